@@ -1,0 +1,13 @@
+//! dermis for Android: a native-activity `cdylib` (`libdermis_android.so`) built and packaged
+//! by `cargo xtask apk`.
+//!
+//! On other targets the crate is only the platform-free [`lifecycle`] state machine (so
+//! `cargo test` / `cargo clippy` on the host cover it); the Android glue and the GPU code are
+//! compiled for `target_os = "android"` only, since android-activity refuses other targets.
+
+pub mod lifecycle;
+
+#[cfg(target_os = "android")]
+mod android;
+#[cfg(target_os = "android")]
+mod app;

@@ -1,0 +1,34 @@
+//! glTF 2.0 loading into the engine's own, validated data model.
+//!
+//! [`load_gltf`] / [`load_gltf_slice`] parse the JSON with the `gltf` crate but load buffers
+//! and images themselves, so that every declared size, range and count is checked (with
+//! checked arithmetic, against [`limits`]) before anything is allocated. Every failure is an
+//! [`AssetError`] naming the file; no input can make the loader panic.
+//!
+//! Policies worth knowing:
+//! - Absent normals are generated *smooth* (area-weighted), keeping the vertex count, so
+//!   skinning data and CPU skinning stay index-compatible with the file.
+//! - Absent tangents are generated from per-triangle UV gradients (see `tangents`).
+//! - Every vertex of a primitive with `WEIGHTS_0` must have a positive weight sum (zero-sum
+//!   weights are an error, whatever the node); weights are normalised to sum 1.
+//! - A node with a skin needs `JOINTS_0`/`WEIGHTS_0` on every primitive of its mesh, and each
+//!   joint index (even with zero weight) must be below the skin's joint count.
+//! - Non-triangle primitives (points, lines, strips, fans) are skipped with a warning.
+//! - Only base-colour textures are decoded (RGBA8, sRGB).
+
+mod accessor;
+mod animation;
+mod error;
+mod glb;
+mod images;
+pub mod limits;
+mod load;
+mod model;
+mod nodes;
+pub mod tangents;
+mod uri;
+mod vertices;
+
+pub use error::AssetError;
+pub use load::{load_gltf, load_gltf_slice};
+pub use model::*;

@@ -1,0 +1,154 @@
+//! The engine's in-memory model: what the loader produces and the renderer and animation read.
+//! Every index in here has been range-checked by the loader.
+
+use glam::{Mat4, Quat, Vec3};
+
+/// One vertex as uploaded to the GPU (76 bytes, `#[repr(C)]`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct Vertex {
+    pub position: [f32; 3],
+    pub normal: [f32; 3],
+    /// xyz tangent, w = handedness (±1). Generated when the file has none.
+    pub tangent: [f32; 4],
+    pub uv: [f32; 2],
+    /// Indices into the skin's joint list (0 for rigid meshes).
+    pub joints: [u16; 4],
+    /// Normalised to sum 1 (`[1,0,0,0]` for rigid meshes).
+    pub weights: [f32; 4],
+    /// Local material thickness in metres (glTF attribute `_THICKNESS`), used as the OSS depth.
+    /// [`DEFAULT_THICKNESS_M`] when absent.
+    pub thickness: f32,
+}
+
+/// Thickness used when a mesh has no `_THICKNESS` attribute (metres).
+pub const DEFAULT_THICKNESS_M: f32 = 0.004;
+
+/// The most joints one skin may have: the palette is a 16 KiB uniform buffer (GLES-safe).
+pub const MAX_JOINTS: usize = 256;
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Transform {
+    pub translation: Vec3,
+    pub rotation: Quat,
+    pub scale: Vec3,
+}
+
+impl Default for Transform {
+    fn default() -> Self {
+        Self { translation: Vec3::ZERO, rotation: Quat::IDENTITY, scale: Vec3::ONE }
+    }
+}
+
+impl Transform {
+    pub fn matrix(&self) -> Mat4 {
+        Mat4::from_scale_rotation_translation(self.scale, self.rotation, self.translation)
+    }
+}
+
+#[derive(Clone, Debug)]
+pub struct Node {
+    pub name: Option<String>,
+    pub parent: Option<usize>,
+    pub children: Vec<usize>,
+    /// Rest (bind-file) local transform; animation overrides it per channel.
+    pub local: Transform,
+    pub mesh: Option<usize>,
+    pub skin: Option<usize>,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Aabb {
+    pub min: Vec3,
+    pub max: Vec3,
+}
+
+#[derive(Clone, Debug)]
+pub struct Primitive {
+    pub vertices: Vec<Vertex>,
+    /// Triangle list (u32; generated 0..n when the file has no indices).
+    pub indices: Vec<u32>,
+    pub material: Option<usize>,
+    /// Bounds of the bind-pose positions.
+    pub bounds: Aabb,
+}
+
+#[derive(Clone, Debug)]
+pub struct Mesh {
+    pub name: Option<String>,
+    pub primitives: Vec<Primitive>,
+}
+
+#[derive(Clone, Debug)]
+pub struct Skin {
+    pub name: Option<String>,
+    /// Node index of each joint.
+    pub joints: Vec<usize>,
+    /// One per joint (identity when the file has none).
+    pub inverse_bind: Vec<Mat4>,
+}
+
+#[derive(Clone, Debug)]
+pub struct Material {
+    pub name: Option<String>,
+    pub base_color_factor: [f32; 4],
+    /// Index into [`Model::textures`].
+    pub base_color_texture: Option<usize>,
+}
+
+/// A decoded image: RGBA8, row-major, `srgb` when it holds colour (base colour textures).
+#[derive(Clone, Debug)]
+pub struct TextureImage {
+    pub width: u32,
+    pub height: u32,
+    pub rgba8: Vec<u8>,
+    pub srgb: bool,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Interpolation {
+    Step,
+    Linear,
+    CubicSpline,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Property {
+    Translation,
+    Rotation,
+    Scale,
+}
+
+/// One animated property of one node. `values` holds `times.len()` elements of 3 (T, S) or
+/// 4 (R, xyzw) floats; for cubic spline, 3 elements per key: in-tangent, value, out-tangent.
+#[derive(Clone, Debug)]
+pub struct Channel {
+    pub node: usize,
+    pub property: Property,
+    pub interpolation: Interpolation,
+    pub times: Vec<f32>,
+    pub values: Vec<f32>,
+}
+
+#[derive(Clone, Debug)]
+pub struct AnimationClip {
+    pub name: Option<String>,
+    /// Last key time over all channels (seconds).
+    pub duration: f32,
+    pub channels: Vec<Channel>,
+}
+
+/// A loaded glTF file.
+#[derive(Clone, Debug)]
+pub struct Model {
+    /// The file name, used in every error message about this model.
+    pub source: String,
+    pub nodes: Vec<Node>,
+    /// Root nodes of the default scene.
+    pub roots: Vec<usize>,
+    pub meshes: Vec<Mesh>,
+    pub skins: Vec<Skin>,
+    pub materials: Vec<Material>,
+    pub textures: Vec<TextureImage>,
+    pub animations: Vec<AnimationClip>,
+}

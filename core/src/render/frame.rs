@@ -1,0 +1,49 @@
+//! The per-frame uniform (`Frame` in `shaders/common.wgsl`).
+
+use glam::{Mat4, Vec3};
+
+/// A point light.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Light {
+    pub position: Vec3,
+    /// Radiant intensity (irradiance at 1 m, normal incidence).
+    pub intensity: f32,
+    pub color: Vec3,
+    pub ambient: Vec3,
+}
+
+impl Default for Light {
+    fn default() -> Self {
+        Self {
+            position: Vec3::new(1.5, 3.0, 2.5),
+            intensity: 30.0,
+            color: Vec3::new(1.0, 0.97, 0.92),
+            ambient: Vec3::new(0.10, 0.11, 0.13),
+        }
+    }
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct FrameUniform {
+    pub view_proj: [[f32; 4]; 4],
+    pub camera_pos: [f32; 4],
+    pub light_pos: [f32; 4],
+    pub light_color: [f32; 4],
+    pub ambient: [f32; 4],
+    /// x: exposure, y: manual sRGB encode flag, z: raw radiance output flag.
+    pub output: [f32; 4],
+}
+
+impl FrameUniform {
+    pub fn new(view_proj: Mat4, camera_pos: Vec3, light: &Light, exposure: f32, manual_srgb: bool, raw: bool) -> Self {
+        Self {
+            view_proj: view_proj.to_cols_array_2d(),
+            camera_pos: camera_pos.extend(1.0).to_array(),
+            light_pos: light.position.extend(light.intensity).to_array(),
+            light_color: light.color.extend(1.0).to_array(),
+            ambient: light.ambient.extend(0.0).to_array(),
+            output: [exposure, f32::from(u8::from(manual_srgb)), f32::from(u8::from(raw)), 0.0],
+        }
+    }
+}

@@ -1,0 +1,60 @@
+//! Bind group layouts, created once.
+
+/// Group 0: the frame uniform. Group 1: a shading model's parameters. Group 2: the skinned
+/// object (joint palette, base colour, sampler). Props: group 1 is their material.
+pub struct Layouts {
+    pub frame: wgpu::BindGroupLayout,
+    pub model: wgpu::BindGroupLayout,
+    pub skinned: wgpu::BindGroupLayout,
+    pub prop_material: wgpu::BindGroupLayout,
+}
+
+fn uniform(binding: u32, visibility: wgpu::ShaderStages) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Uniform,
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    }
+}
+
+fn texture(binding: u32) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::FRAGMENT,
+        ty: wgpu::BindingType::Texture {
+            sample_type: wgpu::TextureSampleType::Float { filterable: true },
+            view_dimension: wgpu::TextureViewDimension::D2,
+            multisampled: false,
+        },
+        count: None,
+    }
+}
+
+fn sampler(binding: u32) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::FRAGMENT,
+        ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+        count: None,
+    }
+}
+
+impl Layouts {
+    pub fn new(device: &wgpu::Device) -> Self {
+        let vf = wgpu::ShaderStages::VERTEX_FRAGMENT;
+        let make = |label, entries: &[wgpu::BindGroupLayoutEntry]| {
+            device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some(label), entries })
+        };
+        Self {
+            frame: make("frame", &[uniform(0, vf)]),
+            model: make("shading model", &[uniform(0, wgpu::ShaderStages::FRAGMENT)]),
+            skinned: make("skinned object", &[uniform(0, wgpu::ShaderStages::VERTEX), texture(1), sampler(2)]),
+            prop_material: make("prop material", &[texture(0), sampler(1), uniform(2, wgpu::ShaderStages::FRAGMENT)]),
+        }
+    }
+}

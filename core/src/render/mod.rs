@@ -1,0 +1,29 @@
+//! The wgpu renderer: GPU context, resources created once at load, and one render pass per
+//! frame (MSAA 4× resolved at the end of the pass, depth never stored — the tile-friendly
+//! default on phones). Tone mapping happens at the end of every fragment shader, so no
+//! second pass is needed.
+
+mod character;
+mod frame;
+mod gpu;
+mod layouts;
+mod mesh;
+mod offscreen;
+mod pipelines;
+mod props;
+mod renderer;
+mod targets;
+mod texture;
+mod timer;
+pub mod ui;
+
+pub use character::CharacterGpu;
+pub use frame::{FrameUniform, Light};
+pub use gpu::{Gpu, GpuError};
+pub use offscreen::{f16_to_f32, Offscreen, RgbaImage, OFFSCREEN_FORMAT};
+pub use pipelines::{build_shader_source, CharacterPipelines};
+pub use props::{PropInstance, PropKind};
+pub use renderer::{DrawSet, FrameView, RenderStats, Renderer};
+pub use targets::{Targets, DEPTH_FORMAT, MSAA_SAMPLES};
+pub use timer::PassTimer;
+pub use ui::{ui_shader_source, ui_vertex_layout, UiRenderer};

@@ -1,0 +1,195 @@
+//! The frame: resources created at load, per-frame uniform writes, one render pass.
+
+use glam::{Mat4, Vec3};
+
+use super::character::CharacterGpu;
+use super::frame::{FrameUniform, Light};
+use super::layouts::Layouts;
+use super::pipelines::Pipelines;
+use super::props::{PropGpu, PropInstance, PropKind, MAX_INSTANCES};
+use super::targets::Targets;
+use super::timer::PassTimer;
+use super::Gpu;
+use crate::anim::Pose;
+use crate::asset::Model;
+use crate::shading::{Material, ShadingModel};
+
+/// What the camera sees this frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FrameView {
+    pub view_proj: Mat4,
+    pub camera_pos: Vec3,
+    pub light: Light,
+    pub exposure: f32,
+}
+
+/// Counts for one encoded frame.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct RenderStats {
+    pub draw_calls: u32,
+    pub triangles: u32,
+}
+
+/// What to draw in [`Renderer::encode`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct DrawSet {
+    /// The character's shading model; `None` draws it with the unlit baseline.
+    pub shading: Option<ShadingModel>,
+    pub character: bool,
+    pub props: bool,
+}
+
+pub struct Renderer {
+    layouts: Layouts,
+    pipelines: Pipelines,
+    sampler: wgpu::Sampler,
+    frame_buffer: wgpu::Buffer,
+    frame_group: wgpu::BindGroup,
+    character: Option<CharacterGpu>,
+    props: Vec<PropGpu>,
+    /// Scratch for grouping prop instances by kind (reused, no per-frame allocation).
+    scratch: Vec<[[f32; 4]; 4]>,
+    pub format: wgpu::TextureFormat,
+    pub clear: wgpu::Color,
+}
+
+impl Renderer {
+    /// Builds every pipeline (all shading models) for `format`.
+    pub fn new(gpu: &Gpu, format: wgpu::TextureFormat) -> Self {
+        let device = &gpu.device;
+        let layouts = Layouts::new(device);
+        let pipelines = Pipelines::new(device, &layouts, format);
+        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("trilinear"),
+            address_mode_u: wgpu::AddressMode::Repeat,
+            address_mode_v: wgpu::AddressMode::Repeat,
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            mipmap_filter: wgpu::MipmapFilterMode::Linear,
+            ..Default::default()
+        });
+        let frame_buffer = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("frame"),
+            size: std::mem::size_of::<FrameUniform>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let frame_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("frame"),
+            layout: &layouts.frame,
+            entries: &[wgpu::BindGroupEntry { binding: 0, resource: frame_buffer.as_entire_binding() }],
+        });
+        Self {
+            layouts,
+            pipelines,
+            sampler,
+            frame_buffer,
+            frame_group,
+            character: None,
+            props: Vec::new(),
+            scratch: Vec::with_capacity(MAX_INSTANCES as usize),
+            format,
+            clear: wgpu::Color { r: 0.015, g: 0.017, b: 0.022, a: 1.0 },
+        }
+    }
+
+    /// Uploads the character (replacing any previous one) with `material`'s constants.
+    pub fn load_character(&mut self, gpu: &Gpu, model: &Model, material: &Material) -> Result<(), String> {
+        let character = CharacterGpu::new(&gpu.device, &gpu.queue, &self.layouts, &self.sampler, model)?;
+        character.set_material(&gpu.queue, material);
+        self.character = Some(character);
+        Ok(())
+    }
+
+    /// Uploads a prop model for `kind`.
+    pub fn load_prop(&mut self, gpu: &Gpu, kind: PropKind, model: &Model) {
+        self.props.retain(|p| p.kind != kind);
+        self.props.push(PropGpu::new(&gpu.device, &gpu.queue, &self.layouts, &self.sampler, kind, model));
+    }
+
+    pub fn set_material(&self, queue: &wgpu::Queue, material: &Material) {
+        if let Some(c) = &self.character {
+            c.set_material(queue, material);
+        }
+    }
+
+    /// Replaces the placed props.
+    pub fn set_props(&mut self, queue: &wgpu::Queue, instances: &[PropInstance]) {
+        for prop in &mut self.props {
+            self.scratch.clear();
+            self.scratch.extend(
+                instances.iter().filter(|i| i.kind == prop.kind).map(|i| i.transform.to_cols_array_2d()),
+            );
+            prop.set_instances(queue, &self.scratch);
+        }
+    }
+
+    /// Uploads the character's joint palettes for `pose`, placed at `world`.
+    pub fn update_character(&mut self, queue: &wgpu::Queue, model: &Model, pose: &Pose, world: Mat4) {
+        if let Some(c) = &mut self.character {
+            c.update_pose(queue, model, pose, world);
+        }
+    }
+
+    /// Writes the frame uniform.
+    pub fn prepare(&self, queue: &wgpu::Queue, view: &FrameView) {
+        let raw = matches!(self.format, wgpu::TextureFormat::Rgba16Float | wgpu::TextureFormat::Rgba32Float);
+        let manual_srgb = !raw && !self.format.is_srgb();
+        let u = FrameUniform::new(view.view_proj, view.camera_pos, &view.light, view.exposure, manual_srgb, raw);
+        queue.write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(&u));
+    }
+
+    pub fn character_triangles(&self) -> u32 {
+        self.character.as_ref().map_or(0, |c| c.triangles)
+    }
+
+    /// Records the frame's one render pass into `encoder`, resolving into `output`.
+    pub fn encode(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        targets: &Targets,
+        output: &wgpu::TextureView,
+        draw: DrawSet,
+        timer: Option<&PassTimer>,
+    ) -> RenderStats {
+        let mut stats = RenderStats::default();
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: None,
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: &targets.msaa,
+                depth_slice: None,
+                resolve_target: Some(output),
+                ops: wgpu::Operations { load: wgpu::LoadOp::Clear(self.clear), store: wgpu::StoreOp::Discard },
+            })],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: &targets.depth,
+                depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(1.0), store: wgpu::StoreOp::Discard }),
+                stencil_ops: None,
+            }),
+            timestamp_writes: timer.map(|t| t.writes()),
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_bind_group(0, &self.frame_group, &[]);
+        if draw.character {
+            if let Some(c) = &self.character {
+                let pipeline = match draw.shading {
+                    Some(m) => self.pipelines.character.get(m),
+                    None => &self.pipelines.character.unlit,
+                };
+                pass.set_pipeline(pipeline);
+                pass.set_bind_group(1, c.params_group(draw.shading), &[]);
+                stats.draw_calls += c.draw(&mut pass);
+                stats.triangles += c.triangles;
+            }
+        }
+        if draw.props {
+            pass.set_pipeline(&self.pipelines.prop);
+            for prop in &self.props {
+                stats.draw_calls += prop.draw(&mut pass);
+                stats.triangles += prop.triangles * prop.count;
+            }
+        }
+        stats
+    }
+}

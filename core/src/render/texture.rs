@@ -1,0 +1,113 @@
+//! Texture upload with a full CPU-built mip chain (filtered in linear light for sRGB data).
+
+use crate::asset::TextureImage;
+
+/// Uploads `image` with all mip levels and returns its view.
+pub fn upload(device: &wgpu::Device, queue: &wgpu::Queue, image: &TextureImage, label: &str) -> wgpu::TextureView {
+    let levels = mip_count(image.width, image.height);
+    let format = if image.srgb { wgpu::TextureFormat::Rgba8UnormSrgb } else { wgpu::TextureFormat::Rgba8Unorm };
+    let texture = device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
+        size: wgpu::Extent3d { width: image.width, height: image.height, depth_or_array_layers: 1 },
+        mip_level_count: levels,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        view_formats: &[],
+    });
+    let (mut w, mut h) = (image.width, image.height);
+    let mut level = image.rgba8.clone();
+    for mip in 0..levels {
+        queue.write_texture(
+            wgpu::TexelCopyTextureInfo {
+                texture: &texture,
+                mip_level: mip,
+                origin: wgpu::Origin3d::ZERO,
+                aspect: wgpu::TextureAspect::All,
+            },
+            &level,
+            wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(4 * w), rows_per_image: Some(h) },
+            wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
+        );
+        if mip + 1 < levels {
+            level = downsample(&level, w, h, image.srgb);
+            w = (w / 2).max(1);
+            h = (h / 2).max(1);
+        }
+    }
+    texture.create_view(&wgpu::TextureViewDescriptor::default())
+}
+
+/// A 1×1 texture of one colour (the default base colour).
+pub fn solid(device: &wgpu::Device, queue: &wgpu::Queue, rgba: [u8; 4], srgb: bool) -> wgpu::TextureView {
+    let image = TextureImage { width: 1, height: 1, rgba8: rgba.to_vec(), srgb };
+    upload(device, queue, &image, "solid")
+}
+
+pub fn mip_count(width: u32, height: u32) -> u32 {
+    32 - width.max(height).max(1).leading_zeros()
+}
+
+/// 2×2 box filter (edge texels repeat for odd sizes), in linear light when `srgb`.
+fn downsample(src: &[u8], w: u32, h: u32, srgb: bool) -> Vec<u8> {
+    let (nw, nh) = ((w / 2).max(1), (h / 2).max(1));
+    let mut out = vec![0u8; (nw * nh * 4) as usize];
+    let texel = |x: u32, y: u32, c: usize| -> f32 {
+        let v = src[((y.min(h - 1) * w + x.min(w - 1)) * 4) as usize + c] as f32 / 255.0;
+        if srgb && c < 3 {
+            srgb_to_linear(v)
+        } else {
+            v
+        }
+    };
+    for y in 0..nh {
+        for x in 0..nw {
+            for c in 0..4 {
+                let (x2, y2) = (x * 2, y * 2);
+                let avg = (texel(x2, y2, c) + texel(x2 + 1, y2, c) + texel(x2, y2 + 1, c) + texel(x2 + 1, y2 + 1, c)) / 4.0;
+                let v = if srgb && c < 3 { linear_to_srgb(avg) } else { avg };
+                out[((y * nw + x) * 4) as usize + c] = (v * 255.0 + 0.5).clamp(0.0, 255.0) as u8;
+            }
+        }
+    }
+    out
+}
+
+fn srgb_to_linear(v: f32) -> f32 {
+    if v <= 0.04045 {
+        v / 12.92
+    } else {
+        ((v + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+fn linear_to_srgb(v: f32) -> f32 {
+    if v <= 0.0031308 {
+        v * 12.92
+    } else {
+        1.055 * v.powf(1.0 / 2.4) - 0.055
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn mip_chain_length() {
+        assert_eq!(mip_count(1, 1), 1);
+        assert_eq!(mip_count(512, 512), 10);
+        assert_eq!(mip_count(640, 3), 10);
+    }
+
+    #[test]
+    fn srgb_downsample_averages_in_linear_light() {
+        // Black and white average to 50 % linear, which is sRGB 188, not 128.
+        let src = [0, 0, 0, 255, 255, 255, 255, 255];
+        let out = downsample(&src, 2, 1, true);
+        assert!((out[0] as i32 - 188).abs() <= 1, "{}", out[0]);
+        let lin = downsample(&src, 2, 1, false);
+        assert!((lin[0] as i32 - 128).abs() <= 1);
+    }
+}

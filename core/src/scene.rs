@@ -1,0 +1,82 @@
+//! What is loaded and where it stands: the character, the props, the light, and helpers to
+//! frame the character for a camera.
+
+use std::path::Path;
+
+use glam::{Mat4, Quat, Vec3};
+
+use crate::anim::{first_skinned_mesh, skin_positions, Pose};
+use crate::asset::{load_gltf, AssetError, Model};
+use crate::render::{PropInstance, PropKind};
+
+/// Everything the demo and the game load at start (nothing is read from disk later).
+pub struct SceneAssets {
+    pub character: Model,
+    pub props: Vec<(PropKind, Model)>,
+}
+
+impl SceneAssets {
+    /// Loads `character` (or `assets/character.glb`) and every prop in `assets/props/`.
+    pub fn load(assets_dir: &Path, character: Option<&Path>) -> Result<Self, AssetError> {
+        let default = assets_dir.join("character.glb");
+        let character = load_gltf(character.unwrap_or(&default))?;
+        let mut props = Vec::new();
+        for kind in PropKind::ALL {
+            let path = assets_dir.join("props").join(kind.file());
+            props.push((kind, load_gltf(&path)?));
+        }
+        Ok(Self { character, props })
+    }
+}
+
+/// The demo room: a floor of 4 m tiles, a back wall, a table and a chair.
+pub fn showroom() -> Vec<PropInstance> {
+    let mut out = Vec::new();
+    for x in -2..=2 {
+        for z in -2..=2 {
+            out.push(PropInstance {
+                kind: PropKind::FloorTile,
+                transform: Mat4::from_translation(Vec3::new(x as f32 * 4.0, 0.0, z as f32 * 4.0)),
+            });
+        }
+    }
+    for x in -2..=2 {
+        out.push(PropInstance {
+            kind: PropKind::Wall,
+            transform: Mat4::from_translation(Vec3::new(x as f32 * 4.0, 0.0, -6.0)),
+        });
+    }
+    let place = |kind, x: f32, z: f32, yaw: f32| PropInstance {
+        kind,
+        transform: Mat4::from_rotation_translation(Quat::from_rotation_y(yaw), Vec3::new(x, 0.0, z)),
+    };
+    out.push(place(PropKind::Table, 2.6, -2.5, 0.3));
+    out.push(place(PropKind::Chair, 1.6, -2.2, 2.2));
+    out.push(place(PropKind::Obstacle, -2.5, -3.0, 0.2));
+    out
+}
+
+/// Axis-aligned bounds of the first skinned mesh in `pose` (world space, before any
+/// placement), or `None` when the model has no skinned mesh.
+pub fn posed_bounds(model: &Model, pose: &Pose) -> Option<(Vec3, Vec3)> {
+    let (_, mesh, _) = first_skinned_mesh(model)?;
+    let points = skin_positions(model, mesh, pose);
+    let mut lo = Vec3::splat(f32::INFINITY);
+    let mut hi = Vec3::splat(f32::NEG_INFINITY);
+    for p in points.iter().filter(|p| p.is_finite()) {
+        lo = lo.min(*p);
+        hi = hi.max(*p);
+    }
+    (lo.x <= hi.x).then_some((lo, hi))
+}
+
+/// A camera eye and target that frame the box `(lo, hi)` from the front-right, filling about
+/// `fill` of the vertical field of view `fov_y`.
+pub fn frame_bounds(lo: Vec3, hi: Vec3, fov_y: f32, fill: f32, aspect: f32) -> (Vec3, Vec3) {
+    let center = (lo + hi) * 0.5;
+    let size = hi - lo;
+    let extent = size.y.max(size.x / aspect.max(0.1)).max(size.z * 0.5).max(1e-3);
+    let distance = extent * 0.5 / (fov_y * 0.5).tan() / fill.clamp(0.05, 1.0) + size.z * 0.5;
+    let dir = Vec3::new(0.35, 0.12, 1.0).normalize();
+    (center + dir * distance, center)
+}

@@ -1,0 +1,19 @@
+//! WGSL composition: the project's one mechanism for sharing shader code.
+//!
+//! WGSL has no `#include`, so dermis runs a small line-based preprocessor over the files in
+//! `shaders/` (embedded at compile time, so no file is read at run time):
+//!
+//! * `#import name` inlines module `name` (`shaders/name.wgsl`) once per composed shader;
+//!   a name can be an *alias* bound by the caller (the character shader imports
+//!   `shading_model`, bound to `ward`, `dipole`, `oss`, … per pipeline);
+//! * `#ifdef FLAG` / `#ifndef FLAG` / `#else` / `#endif` keep or drop lines by the caller's
+//!   flags (effect variants), nesting allowed.
+//!
+//! Everything else is passed through unchanged, so composed output is plain WGSL that any
+//! compiler (naga, tint) accepts. Selecting a shading model selects a file, not a branch.
+
+mod compose;
+mod sources;
+
+pub use compose::{compose, ComposeError, ShaderDefs};
+pub use sources::{module_source, MODULES};

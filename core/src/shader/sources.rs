@@ -1,0 +1,21 @@
+//! The WGSL modules, embedded from `shaders/` at compile time.
+
+/// `(name, source)` of every module the composer can import.
+pub const MODULES: &[(&str, &str)] = &[
+    ("common", include_str!("../../../shaders/common.wgsl")),
+    ("skinning", include_str!("../../../shaders/skinning.wgsl")),
+    ("fresnel", include_str!("../../../shaders/fresnel.wgsl")),
+    ("ward_lobe", include_str!("../../../shaders/ward_lobe.wgsl")),
+    ("ward", include_str!("../../../shaders/ward.wgsl")),
+    ("dipole", include_str!("../../../shaders/dipole.wgsl")),
+    ("oss", include_str!("../../../shaders/oss.wgsl")),
+    ("unlit", include_str!("../../../shaders/unlit.wgsl")),
+    ("character", include_str!("../../../shaders/character.wgsl")),
+    ("prop", include_str!("../../../shaders/prop.wgsl")),
+    ("ui", include_str!("../../../shaders/ui.wgsl")),
+];
+
+/// The source of module `name`, if it exists.
+pub fn module_source(name: &str) -> Option<&'static str> {
+    MODULES.iter().find(|(n, _)| *n == name).map(|(_, s)| *s)
+}

@@ -1,0 +1,105 @@
+//! The paper's "scaled BSSRDF" (§3.2, eq. 2–4; WGSL: `shaders/dipole.wgsl`): Jensen 2001's
+//! dipole diffusion profile R_d(r) with Fresnel transmittance at entry and exit,
+//! S_d = (1/π) F_t(η, ω_i) R_d(r) F_t(η, ω_o), where r is the scaled distance from the
+//! shaded point to the light (see [`super::units::DIPOLE_R_SCALE`]).
+//!
+//! Standard form: R_d(r) = α'/(4π) [ z_r (σ_tr d_r + 1) e^{−σ_tr d_r} / d_r³
+//!                                  + z_v (σ_tr d_v + 1) e^{−σ_tr d_v} / d_v³ ],
+//! z_r = 1/σ'_t, z_v = z_r + 4AD = z_r (1 + 4A/3), d = √(z² + r²).
+//! Eq. 3 as printed divides the virtual-source term by an extra σ'_t (wrong units): that is
+//! the `dipole-printed` variant.
+
+use super::{fresnel, registry::ModelParams, units, Material};
+
+/// What `dipole.wgsl` reads: everything that does not vary per pixel.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Params {
+    pub sigma_tr: [f64; 3],
+    pub z_r: [f64; 3],
+    pub z_v: [f64; 3],
+    pub albedo: [f64; 3],
+    pub sigma_t_prime: [f64; 3],
+    pub total: [f64; 3],
+    pub eta: f64,
+}
+
+impl Params {
+    pub fn new(m: &Material) -> Self {
+        let a = fresnel::boundary_a(m.eta);
+        let t = m.sigma_t_prime();
+        let z_r: [f64; 3] = std::array::from_fn(|c| 1.0 / t[c].max(1e-12));
+        Self {
+            sigma_tr: m.sigma_tr(),
+            z_r,
+            z_v: std::array::from_fn(|c| z_r[c] * (1.0 + 4.0 * a / 3.0)),
+            albedo: m.albedo(),
+            sigma_t_prime: t,
+            total: total_reflectance(m),
+            eta: m.eta,
+        }
+    }
+
+    pub fn pack(&self) -> ModelParams {
+        let row = |v: [f64; 3], w: f64| [v[0] as f32, v[1] as f32, v[2] as f32, w as f32];
+        ModelParams::from_rows(&[
+            row(self.sigma_tr, self.eta),
+            row(self.z_r, units::MM_PER_M * units::DIPOLE_R_SCALE),
+            row(self.z_v, units::DIPOLE_AREA_MM2),
+            row(self.albedo, units::LIGHT_D_MIN_M),
+            row(self.total, 0.0),
+            row(self.sigma_t_prime, 0.0),
+        ])
+    }
+
+    /// f64 reference of R_d(r) [mm⁻²] for channel `c`, r in mm (standard form).
+    pub fn profile(&self, c: usize, r: f64) -> f64 {
+        let (s, zr, zv) = (self.sigma_tr[c], self.z_r[c], self.z_v[c]);
+        let dr = (zr * zr + r * r).sqrt();
+        let dv = (zv * zv + r * r).sqrt();
+        let real = zr * (s * dr + 1.0) * (-s * dr).exp() / (dr * dr * dr);
+        let virt = zv * (s * dv + 1.0) * (-s * dv).exp() / (dv * dv * dv);
+        self.albedo[c] / (4.0 * std::f64::consts::PI) * (real + virt)
+    }
+
+    /// f64 reference of R_d(r) as printed in eq. 3.
+    pub fn profile_printed(&self, c: usize, r: f64) -> f64 {
+        let (s, zr, zv, t) = (self.sigma_tr[c], self.z_r[c], self.z_v[c], self.sigma_t_prime[c]);
+        let dr = (zr * zr + r * r).sqrt();
+        let dv = (zv * zv + r * r).sqrt();
+        let real = (s * dr + 1.0) * (-s * dr).exp() / (t * dr * dr * dr);
+        let virt = zv * (s * dv + 1.0) * (-s * dv).exp() / (t * dv * dv * dv);
+        self.albedo[c] / (4.0 * std::f64::consts::PI) * (real + virt)
+    }
+}
+
+/// Total diffuse reflectance of the dipole (Jensen 2001, eq. for R_d):
+/// R_d = (α'/2)(1 + e^{−(4/3)A√(3(1−α'))}) e^{−√(3(1−α'))}, with 1 − α' = σ_a/σ'_t.
+pub fn total_reflectance(m: &Material) -> [f64; 3] {
+    let a = fresnel::boundary_a(m.eta);
+    let albedo = m.albedo();
+    let one_minus = m.one_minus_albedo();
+    std::array::from_fn(|c| {
+        let s = (3.0 * one_minus[c]).sqrt();
+        0.5 * albedo[c] * (1.0 + (-(4.0 / 3.0) * a * s).exp()) * (-s).exp()
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::shading::material::SKIN1;
+
+    #[test]
+    fn skin1_total_reflectance_is_red() {
+        let r = total_reflectance(&SKIN1);
+        assert!(r[0] > r[1] && r[1] > r[2], "{r:?}");
+        assert!((r[0] - 0.4356).abs() < 2e-3, "{r:?}");
+    }
+
+    #[test]
+    fn printed_virtual_term_differs_by_sigma_t() {
+        let p = Params::new(&SKIN1);
+        let (a, b) = (p.profile(1, 1.0), p.profile_printed(1, 1.0));
+        assert!((a - b).abs() > 1e-3 * a);
+    }
+}

@@ -1,0 +1,17 @@
+//! The skin shading models of Lee, Kim & Chin (2014), one Rust module per WGSL file of the
+//! same name in `shaders/`: each holds the model's parameters, the CPU-side precompute of
+//! everything that does not vary per pixel, and an f64 reference of the per-pixel maths.
+//!
+//! [`ShadingModel`] is the one registry of model names, used by the CLI, the UI, the renderer
+//! and every JSON output.
+
+pub mod dipole;
+pub mod fresnel;
+pub mod material;
+pub mod oss;
+mod registry;
+pub mod units;
+pub mod ward;
+
+pub use material::Material;
+pub use registry::{ModelParams, ShadingModel};

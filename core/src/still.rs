@@ -1,0 +1,148 @@
+//! One still frame rendered offscreen: the `render` command, the image tests and the benches.
+
+use glam::{Mat4, Quat, Vec3};
+
+use crate::anim::Pose;
+use crate::camera::look_at;
+use crate::render::{DrawSet, FrameView, Gpu, Light, Offscreen, PassTimer, Renderer, RgbaImage, OFFSCREEN_FORMAT};
+use crate::scene::{frame_bounds, posed_bounds, showroom, SceneAssets};
+use crate::shading::{Material, ShadingModel};
+
+/// Exposure before tone mapping for stills (same as the desktop demo).
+pub const EXPOSURE: f32 = 1.6;
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Shot {
+    /// `None`: the unlit baseline.
+    pub shading: Option<ShadingModel>,
+    pub material: Material,
+    pub clip: usize,
+    pub time: f32,
+    /// Light position; `None` puts it above, in front and to the right of the character.
+    pub light: Option<Vec3>,
+    /// Draw the showroom props around the character.
+    pub props: bool,
+    /// Fraction of the frame height the character's bounds fill.
+    pub fill: f32,
+}
+
+impl Shot {
+    pub fn new(shading: ShadingModel, material: Material) -> Self {
+        Self { shading: Some(shading), material, clip: 0, time: 0.0, light: None, props: true, fill: 0.8 }
+    }
+}
+
+/// A renderer with the scene uploaded and an offscreen target, reused across shots.
+pub struct StillRenderer {
+    pub renderer: Renderer,
+    pub offscreen: Offscreen,
+    pose: Pose,
+    material: Option<Material>,
+    timer: Option<PassTimer>,
+}
+
+impl StillRenderer {
+    pub fn new(gpu: &Gpu, assets: &SceneAssets, width: u32, height: u32) -> Result<Self, String> {
+        Self::with_format(gpu, assets, width, height, OFFSCREEN_FORMAT)
+    }
+
+    /// With an explicit target format (`Rgba16Float` renders raw radiance, no tone mapping).
+    pub fn with_format(
+        gpu: &Gpu,
+        assets: &SceneAssets,
+        width: u32,
+        height: u32,
+        format: wgpu::TextureFormat,
+    ) -> Result<Self, String> {
+        let mut renderer = Renderer::new(gpu, format);
+        renderer.load_character(gpu, &assets.character, &crate::shading::material::SKIN1)?;
+        for (kind, model) in &assets.props {
+            renderer.load_prop(gpu, *kind, model);
+        }
+        renderer.set_props(&gpu.queue, &showroom());
+        Ok(Self {
+            renderer,
+            offscreen: Offscreen::with_format(gpu, width, height, format),
+            pose: Pose::new(&assets.character),
+            material: None,
+            timer: PassTimer::new(&gpu.device, &gpu.queue),
+        })
+    }
+
+    /// Poses the character, places camera and light, writes uniforms; returns the view.
+    pub fn setup(&mut self, gpu: &Gpu, assets: &SceneAssets, shot: &Shot) -> Result<FrameView, String> {
+        let model = &assets.character;
+        if self.material != Some(shot.material) {
+            self.renderer.set_material(&gpu.queue, &shot.material);
+            self.material = Some(shot.material);
+        }
+        self.pose.reset(model);
+        if !model.animations.is_empty() {
+            let clip = model.animations.get(shot.clip).ok_or_else(|| {
+                format!("{}: clip {} out of range (the model has {})", model.source, shot.clip, model.animations.len())
+            })?;
+            self.pose.apply_clip(clip, shot.time.clamp(0.0, clip.duration));
+        }
+        self.pose.update_world(model);
+        let (lo, hi) = posed_bounds(model, &self.pose).ok_or_else(|| format!("{}: no skinned mesh", model.source))?;
+        // Normalise any character to 1.75 m standing on the floor at the origin.
+        let scale = 1.75 / (hi.y - lo.y).max(1e-6);
+        let center = (lo + hi) * 0.5;
+        let world = Mat4::from_scale_rotation_translation(
+            Vec3::splat(scale),
+            Quat::IDENTITY,
+            Vec3::new(-center.x * scale, -lo.y * scale, -center.z * scale),
+        );
+        let (wlo, whi) = (world.transform_point3(lo), world.transform_point3(hi));
+        self.renderer.update_character(&gpu.queue, model, &self.pose, world);
+        let (w, h) = (self.offscreen.targets.width, self.offscreen.targets.height);
+        let aspect = w as f32 / h as f32;
+        let fov = 40f32.to_radians();
+        let (eye, target) = frame_bounds(wlo.min(whi), wlo.max(whi), fov, shot.fill, aspect);
+        let light = Light { position: shot.light.unwrap_or(Vec3::new(1.5, 3.0, 2.5)), ..Light::default() };
+        let view = FrameView { view_proj: look_at(eye, target, fov, aspect), camera_pos: eye, light, exposure: EXPOSURE };
+        self.renderer.prepare(&gpu.queue, &view);
+        Ok(view)
+    }
+
+    /// Renders `shot` and reads the image back.
+    pub fn render(&mut self, gpu: &Gpu, assets: &SceneAssets, shot: &Shot) -> Result<RgbaImage, String> {
+        self.draw(gpu, assets, shot)?;
+        Ok(self.offscreen.read(gpu))
+    }
+
+    /// Renders `shot` into an `Rgba16Float` target and returns raw radiance per pixel.
+    pub fn render_radiance(&mut self, gpu: &Gpu, assets: &SceneAssets, shot: &Shot) -> Result<Vec<[f32; 4]>, String> {
+        self.draw(gpu, assets, shot)?;
+        Ok(self.offscreen.read_f16(gpu))
+    }
+
+    fn draw(&mut self, gpu: &Gpu, assets: &SceneAssets, shot: &Shot) -> Result<(), String> {
+        self.setup(gpu, assets, shot)?;
+        let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+        let draw = DrawSet { shading: shot.shading, character: true, props: shot.props };
+        self.renderer.encode(&mut encoder, &self.offscreen.targets, &self.offscreen.view, draw, None);
+        self.offscreen.copy_out(&mut encoder);
+        gpu.queue.submit([encoder.finish()]);
+        Ok(())
+    }
+
+    /// Renders only the character pass with timestamps around it; returns GPU milliseconds.
+    pub fn time_character_pass(&mut self, gpu: &Gpu, shading: Option<ShadingModel>) -> Option<f64> {
+        let timer = self.timer.as_ref()?;
+        let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+        let draw = DrawSet { shading, character: true, props: false };
+        self.renderer.encode(&mut encoder, &self.offscreen.targets, &self.offscreen.view, draw, Some(timer));
+        timer.resolve(&mut encoder);
+        gpu.queue.submit([encoder.finish()]);
+        timer.read_ms(&gpu.device)
+    }
+}
+
+impl RgbaImage {
+    /// Saves as PNG.
+    pub fn save_png(&self, path: &std::path::Path) -> Result<(), String> {
+        image::save_buffer(path, &self.pixels, self.width, self.height, image::ExtendedColorType::Rgba8)
+            .map_err(|e| format!("{}: {e}", path.display()))
+    }
+}

@@ -1,0 +1,99 @@
+// Shared by every pass: the per-frame uniform, the shading surface, light and tone mapping.
+
+const PI: f32 = 3.14159265358979;
+const INV_PI: f32 = 0.318309886183791;
+
+struct Frame {
+    view_proj: mat4x4<f32>,
+    camera_pos: vec4<f32>,
+    // xyz: point-light position (m); w: radiant intensity.
+    light_pos: vec4<f32>,
+    // rgb: light colour (linear).
+    light_color: vec4<f32>,
+    // rgb: ambient radiance (linear).
+    ambient: vec4<f32>,
+    // x: exposure; y: 1 when the target is not an sRGB format and we encode by hand;
+    // z: 1 to write raw radiance (HDR float targets, numerical checks).
+    output: vec4<f32>,
+};
+
+@group(0) @binding(0) var<uniform> frame: Frame;
+
+// What a shading model sees at one pixel (world space, unit vectors).
+struct Surface {
+    pos: vec3<f32>,
+    n: vec3<f32>,
+    t: vec3<f32>,
+    b: vec3<f32>,
+    v: vec3<f32>,
+    l: vec3<f32>,
+    // Distance to the light (m), never below 1 mm.
+    light_dist: f32,
+    // Light intensity × colour (before distance falloff).
+    light: vec3<f32>,
+    // Base colour (texture × factor), linear.
+    albedo: vec3<f32>,
+    // Material thickness through this point (m).
+    thickness: f32,
+};
+
+fn safe_normalize(v: vec3<f32>, fallback: vec3<f32>) -> vec3<f32> {
+    let len2 = dot(v, v);
+    if (len2 < 1e-24) {
+        return fallback;
+    }
+    return v * inverseSqrt(len2);
+}
+
+fn make_surface(pos: vec3<f32>, normal: vec3<f32>, tangent: vec4<f32>, albedo: vec3<f32>,
+                thickness: f32) -> Surface {
+    var s: Surface;
+    s.pos = pos;
+    s.n = safe_normalize(normal, vec3<f32>(0.0, 1.0, 0.0));
+    // Gram–Schmidt; a tangent parallel to n falls back to any perpendicular.
+    var t = tangent.xyz - s.n * dot(s.n, tangent.xyz);
+    if (dot(t, t) < 1e-12) {
+        t = select(vec3<f32>(1.0, 0.0, 0.0), vec3<f32>(0.0, 0.0, 1.0), abs(s.n.x) > 0.9);
+        t = t - s.n * dot(s.n, t);
+    }
+    s.t = normalize(t);
+    let handedness = select(1.0, -1.0, tangent.w < 0.0);
+    s.b = cross(s.n, s.t) * handedness;
+    s.v = safe_normalize(frame.camera_pos.xyz - pos, s.n);
+    let to_light = frame.light_pos.xyz - pos;
+    s.light_dist = max(length(to_light), 1e-3);
+    s.l = safe_normalize(to_light, s.n);
+    s.light = frame.light_pos.w * frame.light_color.rgb;
+    s.albedo = albedo;
+    s.thickness = max(thickness, 0.0);
+    return s;
+}
+
+// Irradiance at normal incidence from the point light (inverse square).
+fn irradiance(s: Surface) -> vec3<f32> {
+    return s.light / (s.light_dist * s.light_dist);
+}
+
+// Narkowicz's fit of the ACES filmic curve.
+fn tonemap(x: vec3<f32>) -> vec3<f32> {
+    let c = max(x, vec3<f32>(0.0));
+    return clamp((c * (2.51 * c + 0.03)) / (c * (2.43 * c + 0.59) + 0.14), vec3<f32>(0.0), vec3<f32>(1.0));
+}
+
+fn srgb_encode(c: vec3<f32>) -> vec3<f32> {
+    let lo = c * 12.92;
+    let hi = 1.055 * pow(c, vec3<f32>(1.0 / 2.4)) - 0.055;
+    return select(hi, lo, c <= vec3<f32>(0.0031308));
+}
+
+// Exposure, tone mapping and (where the target is not sRGB) the sRGB encode.
+fn finish(radiance: vec3<f32>) -> vec4<f32> {
+    if (frame.output.z > 0.5) {
+        return vec4<f32>(radiance, 1.0);
+    }
+    var c = tonemap(radiance * frame.output.x);
+    if (frame.output.y > 0.5) {
+        c = srgb_encode(c);
+    }
+    return vec4<f32>(c, 1.0);
+}

@@ -1,0 +1,36 @@
+// The authors' OSS colour model (§3.3, eq. 5–6), as printed. CPU: core/src/shading/oss.rs.
+// f_d is a cubic in the depth d (mm) with material-only coefficients precomputed on the CPU.
+#import common
+#import ward_lobe
+
+struct ModelParams {
+    // f_d = c0 + c1 d + c2 d² + c3 d³ per channel; c0.w: mm of depth per metre of thickness.
+    c0: vec4<f32>,
+    c1: vec4<f32>,
+    c2: vec4<f32>,
+    c3: vec4<f32>,
+    // x: ρ_d, y: ρ_ts, z: minimum light distance (m) for d^-2.5, w: textured flag.
+    misc: vec4<f32>,
+    // x: ρ_s, y: α_x, z: α_y.
+    lobe: vec4<f32>,
+};
+
+@group(1) @binding(0) var<uniform> model: ModelParams;
+
+fn oss_colour(d: f32) -> vec3<f32> {
+    return model.c0.rgb + d * (model.c1.rgb + d * (model.c2.rgb + d * model.c3.rgb));
+}
+
+fn shade(s: Surface) -> vec3<f32> {
+    let fd = oss_colour(s.thickness * model.c0.w);
+    let tex = select(vec3<f32>(1.0), s.albedo, model.misc.w > 0.5);
+    let nl = max(dot(s.n, s.l), 0.0);
+    let dl = max(s.light_dist, model.misc.z);
+    let translucency = 20.0 * model.misc.y / pow(dl, 2.5);
+    let e0 = irradiance(s);
+    let diffuse = fd * tex * (model.misc.x * nl + translucency) * e0 * INV_PI;
+    let specular = e0 * nl * ward_specular(s, model.lobe.x, model.lobe.y, model.lobe.z);
+    let ambient = frame.ambient.rgb * fd * tex * model.misc.x;
+    // As printed f_d can be negative (thick layers): radiance is clamped at 0.
+    return max(ambient + diffuse + vec3<f32>(specular), vec3<f32>(0.0));
+}

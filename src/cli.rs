@@ -1,0 +1,83 @@
+//! Command-line interface.
+
+use std::path::PathBuf;
+
+use clap::{Parser, Subcommand};
+use dermis_core::shading::{Material, ShadingModel};
+
+use crate::cmd;
+
+#[derive(Parser, Debug)]
+#[command(name = "dermis", version, about = "A skinned character with selectable subsurface-scattering skin shaders")]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Option<Command>,
+    #[command(flatten)]
+    pub window: WindowArgs,
+}
+
+#[derive(clap::Args, Debug, Clone)]
+pub struct WindowArgs {
+    /// Quit after this many presented frames.
+    #[arg(long)]
+    pub frames: Option<u64>,
+    /// Save the last presented frame to this PNG.
+    #[arg(long)]
+    pub screenshot: Option<PathBuf>,
+    /// Initial shading model.
+    #[arg(long, default_value = "oss", value_parser = parse_model)]
+    pub shading: ShadingModel,
+    /// Initial material preset (skin1 | white-coat).
+    #[arg(long, default_value = "skin1", value_parser = parse_material)]
+    pub material: Material,
+    /// A glTF character instead of the project's own.
+    #[arg(long)]
+    pub model: Option<PathBuf>,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Render one frame offscreen to a PNG (no display needed).
+    Render(cmd::render::RenderArgs),
+    /// Print skinned world-space vertex positions of the first skinned mesh.
+    Pose {
+        /// glTF file (.glb or .gltf).
+        #[arg(long)]
+        model: PathBuf,
+        /// Animation clip index.
+        #[arg(long, default_value_t = 0)]
+        clip: usize,
+        /// Time in seconds.
+        #[arg(long, default_value_t = 0.0)]
+        time: f32,
+        /// Comma-separated vertex indices (default: all).
+        #[arg(long, value_delimiter = ',')]
+        vertices: Option<Vec<usize>>,
+        /// Print JSON.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Benchmarks that print numbers (JSON + a table).
+    Bench(cmd::bench::BenchArgs),
+}
+
+pub fn parse_model(s: &str) -> Result<ShadingModel, String> {
+    s.parse()
+}
+
+pub fn parse_material(s: &str) -> Result<Material, String> {
+    Material::preset(s).ok_or_else(|| format!("unknown material `{s}` (known: skin1, white-coat)"))
+}
+
+pub fn run(cli: Cli) -> Result<(), String> {
+    match cli.command {
+        None => crate::window::run(cli.window),
+        Some(Command::Render(args)) => cmd::render::run(args),
+        Some(Command::Pose { model, clip, time, vertices, json }) => {
+            let out = cmd::pose::run(&model, clip, time, vertices, json)?;
+            println!("{out}");
+            Ok(())
+        }
+        Some(Command::Bench(args)) => cmd::bench::run(args),
+    }
+}

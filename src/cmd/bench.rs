@@ -1,0 +1,163 @@
+//! `dermis bench`: numbers, not assertions (JSON + a human table).
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+use dermis_core::anim::Pose;
+use dermis_core::render::{DrawSet, Gpu};
+use dermis_core::scene::SceneAssets;
+use dermis_core::shading::{material::SKIN1, ShadingModel};
+use dermis_core::still::{Shot, StillRenderer};
+use serde_json::json;
+
+use crate::cmd::stats::{median, percentile, ratio_ci};
+
+#[derive(clap::Args, Debug)]
+pub struct BenchArgs {
+    #[command(subcommand)]
+    pub what: BenchKind,
+}
+
+#[derive(clap::Subcommand, Debug)]
+pub enum BenchKind {
+    /// Time to first frame, CPU time per frame, and each model's GPU time for a close-up
+    /// character pass as a ratio to `ward`.
+    Frame {
+        /// Rounds of GPU timing (each round times every model once, in rotating order).
+        #[arg(long, default_value_t = 30)]
+        rounds: usize,
+        /// Frames for the CPU timing.
+        #[arg(long, default_value_t = 300)]
+        frames: usize,
+        /// Write the JSON report here (it is also printed with --json).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Print JSON instead of the table.
+        #[arg(long)]
+        json: bool,
+    },
+}
+
+pub fn run(args: BenchArgs) -> Result<(), String> {
+    match args.what {
+        BenchKind::Frame { rounds, frames, out, json } => frame(rounds.max(3), frames.max(10), out, json),
+    }
+}
+
+fn frame(rounds: usize, frames: usize, out: Option<PathBuf>, print_json: bool) -> Result<(), String> {
+    let start = Instant::now();
+    let assets = SceneAssets::load(&crate::paths::assets_dir(), None).map_err(|e| e.to_string())?;
+    let gpu = Gpu::headless().map_err(|e| e.to_string())?;
+    let (w, h) = (1280, 720);
+    let mut still = StillRenderer::new(&gpu, &assets, w, h)?;
+    let first = Shot { clip: 1, time: 0.2, ..Shot::new(ShadingModel::Oss, SKIN1) };
+    still.render(&gpu, &assets, &first)?;
+    let first_frame_ms = start.elapsed().as_secs_f64() * 1e3;
+
+    // Close-up: the character alone, filling the frame height.
+    let close = Shot { props: false, fill: 1.6, ..first };
+    let image = still.render(&gpu, &assets, &Shot { shading: Some(ShadingModel::Ward), ..close })?;
+    let bg = &image.pixels[0..3];
+    let covered = image.pixels.chunks_exact(4).filter(|p| (0..3).any(|k| p[k].abs_diff(bg[k]) > 3)).count();
+    let coverage = covered as f64 / (w * h) as f64;
+
+    // CPU per frame: animation + joint palettes + uniforms + command encoding.
+    let model = &assets.character;
+    let mut pose = Pose::new(model);
+    let clip = model.animations.get(1).or(model.animations.first());
+    let mut cpu_ms = Vec::with_capacity(frames);
+    still.setup(&gpu, &assets, &close)?;
+    for f in 0..frames {
+        let t = Instant::now();
+        pose.reset(model);
+        if let Some(c) = clip {
+            pose.apply_clip(c, (f as f32 / 60.0) % c.duration.max(1e-3));
+        }
+        pose.update_world(model);
+        still.renderer.update_character(&gpu.queue, model, &pose, glam::Mat4::IDENTITY);
+        let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+        let draw = DrawSet { shading: Some(ShadingModel::Oss), character: true, props: true };
+        still.renderer.encode(&mut encoder, &still.offscreen.targets, &still.offscreen.view, draw, None);
+        let cmd = encoder.finish();
+        cpu_ms.push(t.elapsed().as_secs_f64() * 1e3);
+        gpu.queue.submit([cmd]);
+        if f % 8 == 7 {
+            gpu.wait();
+        }
+    }
+    gpu.wait();
+
+    // GPU time per model, interleaved so drift affects every model alike.
+    still.setup(&gpu, &assets, &close)?;
+    let mut models: Vec<Option<ShadingModel>> = ShadingModel::ALL.iter().map(|m| Some(*m)).collect();
+    models.push(None);
+    let mut gpu_ms: Vec<Vec<f64>> = vec![Vec::with_capacity(rounds); models.len()];
+    if gpu.timestamps {
+        for _ in 0..3 {
+            still.time_character_pass(&gpu, Some(ShadingModel::Ward));
+        }
+        for r in 0..rounds {
+            for k in 0..models.len() {
+                let i = (k + r) % models.len();
+                let ms = still.time_character_pass(&gpu, models[i]).ok_or("timestamp read failed")?;
+                gpu_ms[i].push(ms);
+            }
+        }
+    }
+    let name = |m: &Option<ShadingModel>| m.map_or("unlit", |m| m.name());
+    let ward = &gpu_ms[0];
+    let per_model: Vec<serde_json::Value> = models
+        .iter()
+        .zip(&gpu_ms)
+        .map(|(m, ms)| {
+            let (ratio, lo, hi) = ratio_ci(ms, ward);
+            json!({"model": name(m), "gpu_ms_median": median(ms), "ratio_to_ward": ratio, "ratio_ci95": [lo, hi]})
+        })
+        .collect();
+    let label = if gpu.is_cpu() {
+        "CPU-rasterizer ratios (software Vulkan), not phone GPU ratios"
+    } else {
+        "GPU timestamp ratios"
+    };
+    let report = json!({
+        "adapter": gpu.adapter_name(),
+        "label": label,
+        "size": [w, h],
+        "character_coverage": coverage,
+        "time_to_first_frame_ms": first_frame_ms,
+        "cpu_frame_ms": {"p50": percentile(&cpu_ms, 0.5), "p95": percentile(&cpu_ms, 0.95), "mean": cpu_ms.iter().sum::<f64>() / cpu_ms.len() as f64},
+        "gpu_rounds": if gpu.timestamps { rounds } else { 0 },
+        "models": per_model,
+    });
+    let text = serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?;
+    if let Some(path) = &out {
+        std::fs::write(path, &text).map_err(|e| format!("{}: {e}", path.display()))?;
+    }
+    if print_json {
+        println!("{text}");
+        return Ok(());
+    }
+    println!("adapter: {}  ({label})", gpu.adapter_name());
+    println!("time to first frame: {first_frame_ms:.0} ms (load + device + pipelines + first render)");
+    println!(
+        "CPU per frame (pose + palettes + encode): p50 {:.3} ms, p95 {:.3} ms over {frames} frames",
+        percentile(&cpu_ms, 0.5),
+        percentile(&cpu_ms, 0.95)
+    );
+    println!("close-up character pass, {w}x{h}, character covers {:.0} % of the frame:", coverage * 100.0);
+    if !gpu.timestamps {
+        println!("  (no TIMESTAMP_QUERY on this adapter: no GPU times)");
+        return Ok(());
+    }
+    println!("  {:<15} {:>12} {:>10} {:>18}", "model", "median ms", "× ward", "95 % CI");
+    for v in report["models"].as_array().into_iter().flatten() {
+        println!(
+            "  {:<15} {:>12.3} {:>10.3} {:>18}",
+            v["model"].as_str().unwrap_or("?"),
+            v["gpu_ms_median"].as_f64().unwrap_or(f64::NAN),
+            v["ratio_to_ward"].as_f64().unwrap_or(f64::NAN),
+            format!("[{:.3}, {:.3}]", v["ratio_ci95"][0].as_f64().unwrap_or(f64::NAN), v["ratio_ci95"][1].as_f64().unwrap_or(f64::NAN)),
+        );
+    }
+    Ok(())
+}

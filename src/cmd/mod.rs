@@ -1,0 +1,4 @@
+pub mod bench;
+pub mod pose;
+pub mod render;
+pub mod stats;

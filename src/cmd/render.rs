@@ -1,0 +1,81 @@
+//! `dermis render`: one frame offscreen to a PNG.
+
+use std::path::PathBuf;
+
+use dermis_core::render::Gpu;
+use dermis_core::scene::SceneAssets;
+use dermis_core::shading::{Material, ShadingModel};
+use dermis_core::still::{Shot, StillRenderer};
+use glam::Vec3;
+
+use crate::cli::{parse_material, parse_model};
+
+#[derive(clap::Args, Debug)]
+pub struct RenderArgs {
+    /// Shading model of the character.
+    #[arg(long, default_value = "oss", value_parser = parse_model)]
+    pub shading: ShadingModel,
+    /// Material preset (skin1 | white-coat).
+    #[arg(long, default_value = "skin1", value_parser = parse_material)]
+    pub material: Material,
+    /// glTF character (default: the project's own).
+    #[arg(long)]
+    pub model: Option<PathBuf>,
+    /// Animation clip index.
+    #[arg(long, default_value_t = 0)]
+    pub clip: usize,
+    /// Time in the clip (seconds).
+    #[arg(long, default_value_t = 0.0)]
+    pub time: f32,
+    /// Image size, WxH.
+    #[arg(long, default_value = "640x360", value_parser = parse_size)]
+    pub size: (u32, u32),
+    /// Light position X,Y,Z in metres (the character stands at the origin, 1.75 m tall).
+    #[arg(long, value_parser = parse_vec3)]
+    pub light: Option<Vec3>,
+    /// Leave out the props (character only).
+    #[arg(long)]
+    pub no_props: bool,
+    /// Output PNG.
+    #[arg(long)]
+    pub out: PathBuf,
+}
+
+pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    let (w, h) = s.split_once(['x', 'X']).ok_or_else(|| format!("size `{s}` is not WxH"))?;
+    let w: u32 = w.trim().parse().map_err(|_| format!("bad width in `{s}`"))?;
+    let h: u32 = h.trim().parse().map_err(|_| format!("bad height in `{s}`"))?;
+    if !(1..=8192).contains(&w) || !(1..=8192).contains(&h) {
+        return Err(format!("size `{s}` out of range (1..=8192 each)"));
+    }
+    Ok((w, h))
+}
+
+pub fn parse_vec3(s: &str) -> Result<Vec3, String> {
+    let v: Vec<f32> = s
+        .split(',')
+        .map(|p| p.trim().parse::<f32>().map_err(|_| format!("`{s}` is not X,Y,Z")))
+        .collect::<Result<_, _>>()?;
+    match v[..] {
+        [x, y, z] if v.iter().all(|c| c.is_finite() && c.abs() < 1e4) => Ok(Vec3::new(x, y, z)),
+        _ => Err(format!("`{s}` is not X,Y,Z with finite coordinates below 1e4")),
+    }
+}
+
+pub fn run(args: RenderArgs) -> Result<(), String> {
+    let assets = SceneAssets::load(&crate::paths::assets_dir(), args.model.as_deref()).map_err(|e| e.to_string())?;
+    let gpu = Gpu::headless().map_err(|e| e.to_string())?;
+    let (w, h) = args.size;
+    let mut still = StillRenderer::new(&gpu, &assets, w, h)?;
+    let shot = Shot {
+        clip: args.clip,
+        time: args.time,
+        light: args.light,
+        props: !args.no_props,
+        ..Shot::new(args.shading, args.material)
+    };
+    let image = still.render(&gpu, &assets, &shot)?;
+    image.save_png(&args.out)?;
+    println!("{}: {} {} {}x{} on {}", args.out.display(), args.shading, args.material.name, w, h, gpu.adapter_name());
+    Ok(())
+}

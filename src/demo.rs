@@ -1,0 +1,118 @@
+//! The showroom demo shared by the window and the `render` command: the character playing a
+//! clip on a floor with props, lit by one point light, seen by the follow camera.
+
+use std::path::Path;
+
+use dermis_core::anim::Pose;
+use dermis_core::camera::{Capsule, FollowCamera};
+use dermis_core::render::{FrameView, Gpu, Light, Renderer};
+use dermis_core::scene::{posed_bounds, showroom, SceneAssets};
+use dermis_core::shading::{material::PRESETS, Material, ShadingModel};
+use glam::{Mat4, Quat, Vec3};
+
+/// Exposure applied before tone mapping.
+pub const EXPOSURE: f32 = 1.6;
+
+pub struct Demo {
+    pub assets: SceneAssets,
+    pub pose: Pose,
+    pub camera: FollowCamera,
+    pub shading: ShadingModel,
+    pub material: Material,
+    pub clip: usize,
+    pub time: f32,
+    /// Where the character stands and which way it faces.
+    pub position: Vec3,
+    pub yaw: f32,
+    /// Character height (m), from its bind-pose bounds.
+    pub height: f32,
+    /// Uniform scale applied to the character (external models come in other units).
+    pub scale: f32,
+    pub light: Light,
+}
+
+impl Demo {
+    pub fn load(assets_dir: &Path, model: Option<&Path>, shading: ShadingModel, material: Material) -> Result<Self, String> {
+        let assets = SceneAssets::load(assets_dir, model).map_err(|e| e.to_string())?;
+        let mut pose = Pose::new(&assets.character);
+        pose.update_world(&assets.character);
+        let (lo, hi) = posed_bounds(&assets.character, &pose)
+            .ok_or_else(|| format!("{}: no skinned mesh", assets.character.source))?;
+        let raw_height = (hi.y - lo.y).max(1e-6);
+        // Bring any character to about 1.75 m so the showroom and the light fit it.
+        let scale = if model.is_some() { 1.75 / raw_height } else { 1.0 };
+        let mut camera = FollowCamera::new(Vec3::new(0.0, 1.6, 3.2), Vec3::new(0.0, 1.0, 0.0));
+        camera.snap(Vec3::ZERO, 0.0);
+        Ok(Self {
+            assets,
+            pose,
+            camera,
+            shading,
+            material,
+            clip: 0,
+            time: 0.0,
+            position: Vec3::ZERO,
+            yaw: 0.0,
+            height: raw_height * scale,
+            scale,
+            light: Light::default(),
+        })
+    }
+
+    /// Uploads everything to the GPU (once).
+    pub fn upload(&self, gpu: &Gpu, renderer: &mut Renderer) -> Result<(), String> {
+        renderer.load_character(gpu, &self.assets.character, &self.material)?;
+        for (kind, model) in &self.assets.props {
+            renderer.load_prop(gpu, *kind, model);
+        }
+        renderer.set_props(&gpu.queue, &showroom());
+        Ok(())
+    }
+
+    pub fn clip_count(&self) -> usize {
+        self.assets.character.animations.len()
+    }
+
+    /// Advances the animation and the camera by `dt` seconds.
+    pub fn update(&mut self, dt: f32) {
+        self.time += dt;
+        let model = &self.assets.character;
+        self.pose.reset(model);
+        if let Some(clip) = model.animations.get(self.clip) {
+            let t = if clip.duration > 0.0 { self.time % clip.duration } else { 0.0 };
+            self.pose.apply_clip(clip, t);
+        }
+        self.pose.update_world(model);
+        let capsule = Capsule { base: self.position, height: self.height, radius: 0.35 * self.height / 1.75 };
+        self.camera.update(dt, self.position, self.yaw, &capsule);
+    }
+
+    /// The character's placement in the world.
+    pub fn world(&self) -> Mat4 {
+        Mat4::from_scale_rotation_translation(Vec3::splat(self.scale), Quat::from_rotation_y(self.yaw), self.position)
+    }
+
+    pub fn frame_view(&self, aspect: f32) -> FrameView {
+        FrameView {
+            view_proj: self.camera.view_proj(aspect),
+            camera_pos: self.camera.eye.value,
+            light: self.light,
+            exposure: EXPOSURE,
+        }
+    }
+
+    /// Writes this frame's uniforms and palettes.
+    pub fn prepare(&self, gpu: &Gpu, renderer: &mut Renderer, aspect: f32) {
+        renderer.update_character(&gpu.queue, &self.assets.character, &self.pose, self.world());
+        renderer.prepare(&gpu.queue, &self.frame_view(aspect));
+    }
+
+    pub fn next_material(&mut self) {
+        let i = PRESETS.iter().position(|m| m.name == self.material.name).unwrap_or(0);
+        self.material = PRESETS[(i + 1) % PRESETS.len()];
+    }
+
+    pub fn title(&self) -> String {
+        format!("dermis — {} ({}) — {}", self.shading.label(), self.shading.name(), self.material.name)
+    }
+}

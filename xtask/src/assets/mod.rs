@@ -1,0 +1,152 @@
+//! `cargo xtask assets`: regenerates the project's own glTF assets, byte-for-byte reproducibly.
+//!
+//! * `assets/character.glb`: skinned humanoid with `_THICKNESS`, base-colour atlas and the
+//!   `idle`, `run`, `jump` clips.
+//! * `assets/props/*.glb`: static props for the runner game.
+
+mod clips;
+mod detmath;
+mod export;
+mod glb_writer;
+mod humanoid;
+mod mesh;
+mod noise;
+mod props;
+mod shapes;
+mod skeleton;
+mod texture;
+
+use std::path::{Path, PathBuf};
+
+/// Every generated file: (path relative to the output root, bytes, one-line summary).
+pub fn generate() -> Vec<(String, Vec<u8>, String)> {
+    let character = humanoid::build();
+    let rgba = texture::bake(&character.mesh);
+    let png = texture::encode_png(&rgba, texture::SIZE, texture::SIZE);
+    let clips = clips::clips();
+    let (lo, hi) = character.mesh.bounds();
+    let thick = character
+        .thickness
+        .iter()
+        .fold((f32::INFINITY, 0.0f32), |(a, b), &t| (a.min(t), b.max(t)));
+    let clip_info: Vec<String> = clips
+        .iter()
+        .map(|c| {
+            let kind = if c.looping { "loop" } else { "once" };
+            format!(
+                "{} {:.2}s {} keys {kind}",
+                c.name,
+                c.times.last().copied().unwrap_or(0.0),
+                c.times.len()
+            )
+        })
+        .collect();
+    let summary = format!(
+        "{} triangles, {} vertices, {} joints, height {:.3} m (feet at y={:.3}), thickness {:.4}..{:.3} m, {}x{} texture, clips: {}",
+        character.mesh.triangle_count(),
+        character.mesh.vertex_count(),
+        character.skeleton.len(),
+        hi.y - lo.y,
+        lo.y,
+        thick.0,
+        thick.1,
+        texture::SIZE,
+        texture::SIZE,
+        clip_info.join(", ")
+    );
+    let mut out = vec![(
+        "character.glb".to_string(),
+        export::character_glb(&character, &clips, &png),
+        summary,
+    )];
+    for p in props::props() {
+        let (lo, hi) = p.mesh.bounds();
+        let size = hi - lo;
+        let summary = format!(
+            "{} triangles, {} vertices, {:.2} x {:.2} x {:.2} m",
+            p.mesh.triangle_count(),
+            p.mesh.vertex_count(),
+            size.x,
+            size.y,
+            size.z
+        );
+        out.push((
+            format!("props/{}.glb", p.name),
+            export::static_glb(p.name, &p.mesh, &p.png, p.roughness),
+            summary,
+        ));
+    }
+    out
+}
+
+fn repo_root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("xtask lives in the workspace")
+        .to_path_buf()
+}
+
+/// Writes all assets under `dir`.
+pub fn write_all(dir: &Path) -> Result<Vec<(PathBuf, String)>, String> {
+    let mut written = Vec::new();
+    for (rel, bytes, summary) in generate() {
+        let path = dir.join(&rel);
+        if let Some(parent) = path.parent() {
+            std::fs::create_dir_all(parent)
+                .map_err(|e| format!("creating {}: {e}", parent.display()))?;
+        }
+        std::fs::write(&path, &bytes).map_err(|e| format!("writing {}: {e}", path.display()))?;
+        written.push((path, summary));
+    }
+    Ok(written)
+}
+
+pub fn run(args: &[String]) -> Result<(), String> {
+    let mut out_dir = repo_root().join("assets");
+    let mut it = args.iter();
+    while let Some(a) = it.next() {
+        match a.as_str() {
+            "--out" => out_dir = PathBuf::from(it.next().ok_or("--out needs a directory")?),
+            "-h" | "--help" => {
+                println!("usage: cargo xtask assets [--out DIR]   (default DIR: <repo>/assets)");
+                return Ok(());
+            }
+            other => return Err(format!("assets: unknown argument `{other}` (try --help)")),
+        }
+    }
+    for (p, summary) in write_all(&out_dir)? {
+        let len = std::fs::metadata(&p).map(|m| m.len()).unwrap_or(0);
+        println!("wrote {} ({len} bytes): {summary}", p.display());
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The committed assets must be exactly what the generator produces.
+    #[test]
+    fn committed_assets_are_reproducible() {
+        let tmp = std::env::temp_dir().join(format!("dermis-assets-test-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&tmp);
+        let written = write_all(&tmp).expect("generate into a temp dir");
+        let committed = repo_root().join("assets");
+        for (path, _) in written {
+            let rel = path.strip_prefix(&tmp).unwrap();
+            let fresh = std::fs::read(&path).unwrap();
+            let old = std::fs::read(committed.join(rel)).unwrap_or_else(|e| {
+                panic!(
+                    "assets/{} missing ({e}); run `cargo xtask assets`",
+                    rel.display()
+                )
+            });
+            assert!(
+                fresh == old,
+                "assets/{} differs from the generator output; run `cargo xtask assets`",
+                rel.display()
+            );
+        }
+        let _ = std::fs::remove_dir_all(&tmp);
+    }
+}
