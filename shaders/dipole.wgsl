@@ -3,6 +3,7 @@
 // CPU: core/src/shading/dipole.rs.
 #import common
 #import fresnel
+#import dipole_nd
 
 struct ModelParams {
     // rgb: σ_tr (mm⁻¹); w: η.
@@ -15,28 +16,31 @@ struct ModelParams {
     albedo: vec4<f32>,
     // rgb: total diffuse reflectance R_d (ambient term).
     total: vec4<f32>,
-    // rgb: σ'_t (mm⁻¹), used by the printed variant only.
+    // rgb: σ'_t = 1/ℓ (mm⁻¹).
     sigma_t: vec4<f32>,
+    // rgb: σ_tr ℓ = √(3σ_a/σ'_t); w: z_v/ℓ = 1 + 4A/3 (standard form's nondimensional inputs).
+    nd: vec4<f32>,
 };
 
 @group(1) @binding(0) var<uniform> model: ModelParams;
 
 // R_d(r) in mm⁻², r in mm.
 fn dipole_profile(r: f32) -> vec3<f32> {
+#ifdef DIPOLE_PRINTED
     let s = model.sigma_tr.rgb;
     let zr = model.z_r.rgb;
     let zv = model.z_v.rgb;
     let dr = sqrt(zr * zr + r * r);
     let dv = sqrt(zv * zv + r * r);
-#ifdef DIPOLE_PRINTED
     // Eq. 3 as printed: both terms divided by σ'_t; the virtual one also keeps z_v.
     let real = (s * dr + 1.0) * exp(-s * dr) / (model.sigma_t.rgb * dr * dr * dr);
     let virt = zv * (s * dv + 1.0) * exp(-s * dv) / (model.sigma_t.rgb * dv * dv * dv);
-#else
-    let real = zr * (s * dr + 1.0) * exp(-s * dr) / (dr * dr * dr);
-    let virt = zv * (s * dv + 1.0) * exp(-s * dv) / (dv * dv * dv);
-#endif
     return model.albedo.rgb * (0.25 * INV_PI) * (real + virt);
+#else
+    // Standard form in units of ℓ = 1/σ'_t (dipole_nd.wgsl): R_d = σ'_t² · R̃_d(σ'_t r).
+    let t = model.sigma_t.rgb;
+    return t * t * dipole_rd_nd(t * r, model.nd.rgb, model.nd.w, model.albedo.rgb);
+#endif
 }
 
 fn shade(s: Surface) -> vec3<f32> {

@@ -1,7 +1,9 @@
-// The authors' OSS colour model (§3.3, eq. 5–6), as printed. CPU: core/src/shading/oss.rs.
-// f_d is a cubic in the depth d (mm) with material-only coefficients precomputed on the CPU.
+// The authors' OSS colour model (§3.3, eq. 5–6). CPU: core/src/shading/oss.rs.
+// As printed (`oss`): f_d is a cubic in the depth d (mm) with material-only coefficients
+// precomputed on the CPU. `oss-stable` (flag OSS_STABLE): positive, bounded terms.
 #import common
 #import ward_lobe
+#import oss_nd
 
 struct ModelParams {
     // f_d = c0 + c1 d + c2 d² + c3 d³ per channel; c0.w: mm of depth per metre of thickness.
@@ -13,12 +15,21 @@ struct ModelParams {
     misc: vec4<f32>,
     // x: ρ_s, y: α_x, z: α_y.
     lobe: vec4<f32>,
+    // rgb: σ_a (mm⁻¹); w: F_dr(η). Stable form only.
+    sigma_a: vec4<f32>,
+    // rgb: σ'_s P(g) (mm⁻¹). Stable form only.
+    sp: vec4<f32>,
 };
 
 @group(1) @binding(0) var<uniform> model: ModelParams;
 
 fn oss_colour(d: f32) -> vec3<f32> {
+#ifdef OSS_STABLE
+    // On the optical depths σ_a d and σ'_s P d (oss_nd.wgsl).
+    return oss_fd_stable_nd(model.sigma_a.rgb * d, model.sp.rgb * d, model.sigma_a.w);
+#else
     return model.c0.rgb + d * (model.c1.rgb + d * (model.c2.rgb + d * model.c3.rgb));
+#endif
 }
 
 fn shade(s: Surface) -> vec3<f32> {

@@ -8,7 +8,11 @@ use dermis_core::shading::{Material, ShadingModel};
 use crate::cmd;
 
 #[derive(Parser, Debug)]
-#[command(name = "dermis", version, about = "A skinned character with selectable subsurface-scattering skin shaders")]
+#[command(
+    name = "dermis",
+    version,
+    about = "A skinned character with selectable subsurface-scattering skin shaders"
+)]
 pub struct Cli {
     #[command(subcommand)]
     pub command: Option<Command>,
@@ -24,19 +28,32 @@ pub struct WindowArgs {
     /// Save the last presented frame to this PNG.
     #[arg(long)]
     pub screenshot: Option<PathBuf>,
-    /// Initial shading model.
-    #[arg(long, default_value = "oss", value_parser = parse_model)]
-    pub shading: ShadingModel,
+    /// Shading model (default: the player's saved choice in the game, `oss` in the demo).
+    #[arg(long, value_parser = parse_model)]
+    pub shading: Option<ShadingModel>,
     /// Initial material preset (skin1 | white-coat).
     #[arg(long, default_value = "skin1", value_parser = parse_material)]
     pub material: Material,
     /// A glTF character instead of the project's own.
     #[arg(long)]
     pub model: Option<PathBuf>,
+    /// Let the autoplay bot play.
+    #[arg(long)]
+    pub autoplay: bool,
+    /// Seed of the run (obstacles, bot).
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Settings file (default: $XDG_CONFIG_HOME/dermis/settings.txt).
+    #[arg(long)]
+    pub settings: Option<PathBuf>,
 }
 
 #[derive(Subcommand, Debug)]
 pub enum Command {
+    /// The showroom demo: the character on a floor with props (no game).
+    Demo(WindowArgs),
+    /// Play headless (no window) and print a summary of frame cost and allocations.
+    Play(cmd::play::PlayArgs),
     /// Render one frame offscreen to a PNG (no display needed).
     Render(cmd::render::RenderArgs),
     /// Print skinned world-space vertex positions of the first skinned mesh.
@@ -71,9 +88,17 @@ pub fn parse_material(s: &str) -> Result<Material, String> {
 
 pub fn run(cli: Cli) -> Result<(), String> {
     match cli.command {
-        None => crate::window::run(cli.window),
+        None => crate::window::run_game(cli.window),
+        Some(Command::Demo(args)) => crate::window::run_demo(args),
+        Some(Command::Play(args)) => cmd::play::run(args),
         Some(Command::Render(args)) => cmd::render::run(args),
-        Some(Command::Pose { model, clip, time, vertices, json }) => {
+        Some(Command::Pose {
+            model,
+            clip,
+            time,
+            vertices,
+            json,
+        }) => {
             let out = cmd::pose::run(&model, clip, time, vertices, json)?;
             println!("{out}");
             Ok(())

@@ -32,7 +32,12 @@ pub struct Demo {
 }
 
 impl Demo {
-    pub fn load(assets_dir: &Path, model: Option<&Path>, shading: ShadingModel, material: Material) -> Result<Self, String> {
+    pub fn load(
+        assets_dir: &Path,
+        model: Option<&Path>,
+        shading: ShadingModel,
+        material: Material,
+    ) -> Result<Self, String> {
         let assets = SceneAssets::load(assets_dir, model).map_err(|e| e.to_string())?;
         let mut pose = Pose::new(&assets.character);
         pose.update_world(&assets.character);
@@ -40,7 +45,11 @@ impl Demo {
             .ok_or_else(|| format!("{}: no skinned mesh", assets.character.source))?;
         let raw_height = (hi.y - lo.y).max(1e-6);
         // Bring any character to about 1.75 m so the showroom and the light fit it.
-        let scale = if model.is_some() { 1.75 / raw_height } else { 1.0 };
+        let scale = if model.is_some() {
+            1.75 / raw_height
+        } else {
+            1.0
+        };
         let mut camera = FollowCamera::new(Vec3::new(0.0, 1.6, 3.2), Vec3::new(0.0, 1.0, 0.0));
         camera.snap(Vec3::ZERO, 0.0);
         Ok(Self {
@@ -79,17 +88,29 @@ impl Demo {
         let model = &self.assets.character;
         self.pose.reset(model);
         if let Some(clip) = model.animations.get(self.clip) {
-            let t = if clip.duration > 0.0 { self.time % clip.duration } else { 0.0 };
+            let t = if clip.duration > 0.0 {
+                self.time % clip.duration
+            } else {
+                0.0
+            };
             self.pose.apply_clip(clip, t);
         }
         self.pose.update_world(model);
-        let capsule = Capsule { base: self.position, height: self.height, radius: 0.35 * self.height / 1.75 };
+        let capsule = Capsule {
+            base: self.position,
+            height: self.height,
+            radius: 0.35 * self.height / 1.75,
+        };
         self.camera.update(dt, self.position, self.yaw, &capsule);
     }
 
     /// The character's placement in the world.
     pub fn world(&self) -> Mat4 {
-        Mat4::from_scale_rotation_translation(Vec3::splat(self.scale), Quat::from_rotation_y(self.yaw), self.position)
+        Mat4::from_scale_rotation_translation(
+            Vec3::splat(self.scale),
+            Quat::from_rotation_y(self.yaw),
+            self.position,
+        )
     }
 
     pub fn frame_view(&self, aspect: f32) -> FrameView {
@@ -108,11 +129,19 @@ impl Demo {
     }
 
     pub fn next_material(&mut self) {
-        let i = PRESETS.iter().position(|m| m.name == self.material.name).unwrap_or(0);
+        let i = PRESETS
+            .iter()
+            .position(|m| m.name == self.material.name)
+            .unwrap_or(0);
         self.material = PRESETS[(i + 1) % PRESETS.len()];
     }
 
     pub fn title(&self) -> String {
-        format!("dermis — {} ({}) — {}", self.shading.label(), self.shading.name(), self.material.name)
+        format!(
+            "dermis — {} ({}) — {}",
+            self.shading.label(),
+            self.shading.name(),
+            self.material.name
+        )
     }
 }

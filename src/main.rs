@@ -1,5 +1,6 @@
 //! `dermis`: the desktop app and its headless commands.
 
+mod alloc_count;
 mod cli;
 mod cmd;
 mod demo;
@@ -10,8 +11,14 @@ use std::process::ExitCode;
 
 use clap::Parser;
 
+#[global_allocator]
+static ALLOCATOR: alloc_count::Counting = alloc_count::Counting;
+
 fn main() -> ExitCode {
-    env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn,wgpu_hal::gles::egl=off")).init();
+    env_logger::Builder::from_env(
+        env_logger::Env::default().default_filter_or("warn,wgpu_hal::gles::egl=off"),
+    )
+    .init();
     // Bad input is reported as one line, never as a panic with a backtrace.
     std::panic::set_hook(Box::new(|info| {
         let msg = info
@@ -21,7 +28,10 @@ fn main() -> ExitCode {
             .or_else(|| info.payload().downcast_ref::<String>().cloned())
             .unwrap_or_else(|| "unknown panic".into());
         let line = msg.lines().next().unwrap_or("");
-        eprintln!("dermis: internal error: {line} (at {})", info.location().map_or("?".into(), |l| l.to_string()));
+        eprintln!(
+            "dermis: internal error: {line} (at {})",
+            info.location().map_or("?".into(), |l| l.to_string())
+        );
     }));
     let cli = match cli::Cli::try_parse() {
         Ok(cli) => cli,

@@ -17,14 +17,19 @@ fn skinning_matches_three_js_golden() {
         let golden_path = common::data_dir().join(format!("golden/{stem}.json"));
         let golden: Value =
             serde_json::from_str(&std::fs::read_to_string(&golden_path).unwrap()).unwrap();
-        let Some(path) = common::external_model(name) else { continue };
+        let Some(path) = common::external_model(name) else {
+            continue;
+        };
         let model = load_gltf(&path).unwrap();
         let (node, mesh, _) = first_skinned_mesh(&model).unwrap();
         assert_eq!(golden["node"].as_u64().unwrap() as usize, node, "{name}");
         assert_eq!(golden["mesh"].as_u64().unwrap() as usize, mesh, "{name}");
         let clip = &model.animations[golden["clip"].as_u64().unwrap() as usize];
         let golden_duration = golden["clip_duration"].as_f64().unwrap() as f32;
-        assert!((clip.duration - golden_duration).abs() < 1e-5, "{name}: duration");
+        assert!(
+            (clip.duration - golden_duration).abs() < 1e-5,
+            "{name}: duration"
+        );
         let mut pose = Pose::new(&model);
         let samples = golden["samples"].as_array().unwrap();
         assert!(samples.len() >= 4);
@@ -34,7 +39,10 @@ fn skinning_matches_three_js_golden() {
             pose.apply_clip(clip, t);
             pose.update_world(&model);
             let positions = skin_positions(&model, mesh, &pose);
-            assert_eq!(positions.len() as u64, golden["vertex_count"].as_u64().unwrap());
+            assert_eq!(
+                positions.len() as u64,
+                golden["vertex_count"].as_u64().unwrap()
+            );
             let verts = sample["vertices"].as_array().unwrap();
             assert!(verts.len() >= 50);
             let mut worst = 0.0f32;
@@ -54,7 +62,10 @@ fn skinning_matches_three_js_golden() {
                     positions[i]
                 );
             }
-            eprintln!("{name} t={t}: worst difference {worst:e} m over {} vertices", verts.len());
+            eprintln!(
+                "{name} t={t}: worst difference {worst:e} m over {} vertices",
+                verts.len()
+            );
             checked += verts.len();
         }
     }

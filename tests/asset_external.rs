@@ -7,12 +7,18 @@ use dermis_core::asset::{load_gltf, MAX_JOINTS};
 #[test]
 fn external_models_load_sensibly() {
     for name in common::EXTERNAL_MODELS {
-        let Some(path) = common::external_model(name) else { continue };
+        let Some(path) = common::external_model(name) else {
+            continue;
+        };
         let model = std::panic::catch_unwind(|| load_gltf(&path))
             .unwrap_or_else(|_| panic!("{name}: loader panicked"))
             .unwrap_or_else(|e| panic!("{name}: {e}"));
-        let verts: usize =
-            model.meshes.iter().flat_map(|m| &m.primitives).map(|p| p.vertices.len()).sum();
+        let verts: usize = model
+            .meshes
+            .iter()
+            .flat_map(|m| &m.primitives)
+            .map(|p| p.vertices.len())
+            .sum();
         let joints: usize = model.skins.iter().map(|s| s.joints.len()).sum();
         eprintln!(
             "{name}: {} nodes, {} meshes, {verts} vertices, {} skins / {joints} joints, {} clips, \
@@ -33,7 +39,11 @@ fn external_models_load_sensibly() {
         }
         assert!(!model.animations.is_empty(), "{name}: no clip");
         for c in &model.animations {
-            assert!(c.duration > 0.0 && c.duration < 60.0, "{name}: duration {}", c.duration);
+            assert!(
+                c.duration > 0.0 && c.duration < 60.0,
+                "{name}: duration {}",
+                c.duration
+            );
             assert!(!c.channels.is_empty());
         }
         assert!(!model.roots.is_empty());
@@ -41,8 +51,16 @@ fn external_models_load_sensibly() {
             assert_eq!(p.indices.len() % 3, 0);
             assert!(p.indices.iter().all(|&i| (i as usize) < p.vertices.len()));
             for v in &p.vertices {
-                let floats = v.position.iter().chain(&v.normal).chain(&v.tangent).chain(&v.uv);
-                assert!(floats.chain(&v.weights).all(|x| x.is_finite()), "{name}: NaN");
+                let floats = v
+                    .position
+                    .iter()
+                    .chain(&v.normal)
+                    .chain(&v.tangent)
+                    .chain(&v.uv);
+                assert!(
+                    floats.chain(&v.weights).all(|x| x.is_finite()),
+                    "{name}: NaN"
+                );
                 let sum: f32 = v.weights.iter().sum();
                 assert!((sum - 1.0).abs() < 1e-4, "{name}: weight sum {sum}");
                 assert!((v.tangent[3].abs() - 1.0).abs() < 1e-6);

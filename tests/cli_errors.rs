@@ -3,23 +3,48 @@
 use std::process::Command;
 
 fn dermis(args: &[&str]) -> (bool, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_dermis")).args(args).output().unwrap();
-    (out.status.success(), String::from_utf8_lossy(&out.stderr).into_owned())
+    let out = Command::new(env!("CARGO_BIN_EXE_dermis"))
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        out.status.success(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
 }
 
 fn assert_one_line_error(args: &[&str], needle: &str) {
     let (ok, stderr) = dermis(args);
     assert!(!ok, "{args:?} succeeded");
     let lines: Vec<&str> = stderr.lines().filter(|l| !l.trim().is_empty()).collect();
-    assert_eq!(lines.len(), 1, "{args:?}: expected one line, got:\n{stderr}");
-    assert!(!stderr.contains("panicked") && !stderr.contains("internal error"), "{args:?}: {stderr}");
-    assert!(stderr.contains(needle), "{args:?}: `{needle}` not in: {stderr}");
+    assert_eq!(
+        lines.len(),
+        1,
+        "{args:?}: expected one line, got:\n{stderr}"
+    );
+    assert!(
+        !stderr.contains("panicked") && !stderr.contains("internal error"),
+        "{args:?}: {stderr}"
+    );
+    assert!(
+        stderr.contains(needle),
+        "{args:?}: `{needle}` not in: {stderr}"
+    );
 }
 
 #[test]
 fn missing_file() {
     assert_one_line_error(&["pose", "--model", "/nonexistent/x.glb"], "x.glb");
-    assert_one_line_error(&["render", "--model", "/nonexistent/y.gltf", "--out", "/tmp/dermis-never.png"], "y.gltf");
+    assert_one_line_error(
+        &[
+            "render",
+            "--model",
+            "/nonexistent/y.gltf",
+            "--out",
+            "/tmp/dermis-never.png",
+        ],
+        "y.gltf",
+    );
 }
 
 #[test]
@@ -37,14 +62,26 @@ fn corrupt_gltf() {
 
 #[test]
 fn unknown_names_and_bad_values() {
-    assert_one_line_error(&["render", "--shading", "phong", "--out", "/tmp/x.png"], "phong");
-    assert_one_line_error(&["render", "--material", "marble", "--out", "/tmp/x.png"], "marble");
+    assert_one_line_error(
+        &["render", "--shading", "phong", "--out", "/tmp/x.png"],
+        "phong",
+    );
+    assert_one_line_error(
+        &["render", "--material", "marble", "--out", "/tmp/x.png"],
+        "marble",
+    );
     assert_one_line_error(&["render", "--size", "0x10", "--out", "/tmp/x.png"], "0x10");
-    assert_one_line_error(&["render", "--light", "1,nan,2", "--out", "/tmp/x.png"], "1,nan,2");
+    assert_one_line_error(
+        &["render", "--light", "1,nan,2", "--out", "/tmp/x.png"],
+        "1,nan,2",
+    );
 }
 
 #[test]
 fn out_of_range_clip() {
     let cesium = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/character.glb");
-    assert_one_line_error(&["pose", "--model", cesium.to_str().unwrap(), "--clip", "99"], "clip");
+    assert_one_line_error(
+        &["pose", "--model", cesium.to_str().unwrap(), "--clip", "99"],
+        "clip",
+    );
 }

@@ -78,12 +78,22 @@ fn the_bot_survives_a_while_dies_sometimes_and_restarts() {
         last_runs = g.runs();
     }
     assert!(!deaths.is_empty(), "the bot can die");
-    assert!(last_runs as usize >= deaths.len().saturating_sub(1), "it restarts after game over");
+    assert!(
+        last_runs as usize >= deaths.len().saturating_sub(1),
+        "it restarts after game over"
+    );
     let mean = deaths.iter().map(|&d| d as f64).sum::<f64>() / deaths.len() as f64;
     assert!(mean > 250.0, "survives a good while: deaths at {deaths:?}");
-    assert_eq!(g.best(), *deaths.iter().max().unwrap(), "best = the best finished run");
+    assert_eq!(
+        g.best(),
+        *deaths.iter().max().unwrap(),
+        "best = the best finished run"
+    );
     assert!(max_score >= g.best());
-    eprintln!("bot: {} deaths, mean {mean:.0} m, best {max_score} m", deaths.len());
+    eprintln!(
+        "bot: {} deaths, mean {mean:.0} m, best {max_score} m",
+        deaths.len()
+    );
 }
 
 #[test]

@@ -1,6 +1,8 @@
 //! Game rules: collision, jumping, lanes, score, replay, best score, settings, props, animation.
 
-use dermis_core::game::{Clip, Game, Input, ObstacleKind, Screen, Settings, Swipe, TICK_DT, TICK_HZ};
+use dermis_core::game::{
+    Clip, Game, Input, ObstacleKind, Screen, Settings, Swipe, TICK_DT, TICK_HZ,
+};
 use dermis_core::render::{PropInstance, PropKind};
 use dermis_core::shading::ShadingModel;
 
@@ -180,7 +182,10 @@ fn every_row_leaves_a_lane_without_a_tall_obstacle() {
         }
         assert!(!rows.is_empty());
         for (_, row) in rows {
-            assert!(row.iter().any(|k| *k != Some(ObstacleKind::Tall)), "seed {seed}: {row:?}");
+            assert!(
+                row.iter().any(|k| *k != Some(ObstacleKind::Tall)),
+                "seed {seed}: {row:?}"
+            );
         }
     }
 }
@@ -202,7 +207,9 @@ fn props_fill_a_preallocated_vec_without_reallocating() {
     for kind in [PropKind::FloorTile, PropKind::Wall, PropKind::Obstacle] {
         assert!(out.iter().any(|p| p.kind == kind), "{kind:?}");
     }
-    assert!(out.iter().any(|p| matches!(p.kind, PropKind::Table | PropKind::Chair)));
+    assert!(out
+        .iter()
+        .any(|p| matches!(p.kind, PropKind::Table | PropKind::Chair)));
     assert!(out.len() <= Game::MAX_PROPS);
 }
 
@@ -223,10 +230,17 @@ fn animation_crossfades_idle_run_jump() {
     assert_eq!(g.anim_state().blend[1], (Clip::Run as usize, 1.0));
     g.tick(&press(|i| i.jump = true));
     let a = g.anim_state();
-    assert_eq!((a.blend[0].0, a.blend[1].0), (Clip::Run as usize, Clip::Jump as usize));
+    assert_eq!(
+        (a.blend[0].0, a.blend[1].0),
+        (Clip::Run as usize, Clip::Jump as usize)
+    );
     assert!(a.time[1] < 2.0 * TICK_DT, "jump clip restarts: {a:?}");
     run_ticks(&mut g, TICK_HZ, &NONE);
-    assert_eq!(g.anim_state().blend[1], (Clip::Run as usize, 1.0), "back to running after landing");
+    assert_eq!(
+        g.anim_state().blend[1],
+        (Clip::Run as usize, 1.0),
+        "back to running after landing"
+    );
 }
 
 #[test]
@@ -266,7 +280,15 @@ fn settings_round_trip_and_survive_garbage() {
     s.set_shading_model(ShadingModel::Oss);
     s.best = 1234;
     assert_eq!(Settings::from_text(&s.to_text()), s);
-    for garbage in ["", "\0\0\u{fffd}", "best=", "best=-5\nshading=nope", "=\n==\nbest", "best=99999999999999", "shading"] {
+    for garbage in [
+        "",
+        "\0\0\u{fffd}",
+        "best=",
+        "best=-5\nshading=nope",
+        "=\n==\nbest",
+        "best=99999999999999",
+        "shading",
+    ] {
         let g = Settings::from_text(garbage);
         assert_eq!(g, Settings::default(), "{garbage:?}");
     }
@@ -279,15 +301,41 @@ fn settings_save_is_atomic_and_load_tolerates_missing_files() {
     let dir = std::env::temp_dir().join(format!("dermis-settings-{}", std::process::id()));
     let path = dir.join("sub").join("settings.txt");
     assert_eq!(Settings::load(&path), Settings::default());
-    let s = Settings { shading: "oss".into(), best: 42 };
+    let s = Settings {
+        shading: "oss".into(),
+        best: 42,
+    };
     s.save(&path).unwrap();
     assert_eq!(Settings::load(&path), s);
-    let s2 = Settings { shading: "ward".into(), best: 43 };
+    let s2 = Settings {
+        shading: "ward".into(),
+        best: 43,
+    };
     s2.save(&path).unwrap();
     assert_eq!(Settings::load(&path), s2);
-    let leftovers: Vec<_> = std::fs::read_dir(path.parent().unwrap()).unwrap().map(|e| e.unwrap().file_name()).collect();
+    let leftovers: Vec<_> = std::fs::read_dir(path.parent().unwrap())
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
     assert_eq!(leftovers.len(), 1, "no temp file left: {leftovers:?}");
     std::fs::write(&path, [0xff, 0xfe, 0x00, b'=', b'\n']).unwrap();
     assert_eq!(Settings::load(&path), Settings::default());
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn gestures_become_taps_and_swipes() {
+    let g = |d: (f32, f32), u: (f32, f32)| Input::from_gesture(d, u, 30.0);
+    assert_eq!(g((100.0, 100.0), (110.0, 95.0)).tap, Some((110.0, 95.0)));
+    assert_eq!(g((100.0, 100.0), (20.0, 110.0)).swipe, Some(Swipe::Left));
+    assert_eq!(g((100.0, 100.0), (180.0, 90.0)).swipe, Some(Swipe::Right));
+    assert_eq!(g((100.0, 100.0), (110.0, 20.0)).swipe, Some(Swipe::Up));
+    assert_eq!(g((100.0, 100.0), (90.0, 180.0)).swipe, Some(Swipe::Down));
+    // A swipe up jumps, a tap in play jumps.
+    let mut game = playing(1000.0);
+    game.tick(&g((100.0, 100.0), (110.0, 20.0)));
+    assert!(game.is_airborne());
+    let mut game = playing(1000.0);
+    game.tick(&g((100.0, 100.0), (100.0, 100.0)));
+    assert!(game.is_airborne());
 }

@@ -25,12 +25,22 @@ fn assets() -> SceneAssets {
 
 /// A fixed pose: mid-stride in the run clip.
 fn shot(model: ShadingModel) -> Shot {
-    Shot { clip: 1, time: 0.2, props: false, fill: 1.0, ..Shot::new(model, SKIN1) }
+    Shot {
+        clip: 1,
+        time: 0.2,
+        props: false,
+        fill: 1.0,
+        ..Shot::new(model, SKIN1)
+    }
 }
 
 fn px(img: &RgbaImage, i: usize) -> [f32; 3] {
     let p = &img.pixels[i * 4..i * 4 + 3];
-    [p[0] as f32 / 255.0, p[1] as f32 / 255.0, p[2] as f32 / 255.0]
+    [
+        p[0] as f32 / 255.0,
+        p[1] as f32 / 255.0,
+        p[2] as f32 / 255.0,
+    ]
 }
 
 fn luminance(c: [f32; 3]) -> f32 {
@@ -66,12 +76,17 @@ fn every_model_renders_the_character() {
     let gpu = gpu();
     let assets = assets();
     let mut still = StillRenderer::new(&gpu, &assets, W, H).unwrap();
-    let images: Vec<(ShadingModel, RgbaImage)> =
-        ShadingModel::ALL.iter().map(|&m| (m, still.render(&gpu, &assets, &shot(m)).unwrap())).collect();
+    let images: Vec<(ShadingModel, RgbaImage)> = ShadingModel::ALL
+        .iter()
+        .map(|&m| (m, still.render(&gpu, &assets, &shot(m)).unwrap()))
+        .collect();
     let ward = &images[0].1;
     let m = mask(ward);
     let coverage = m.iter().filter(|x| **x).count() as f32 / m.len() as f32;
-    assert!((0.05..=0.60).contains(&coverage), "character coverage {coverage:.3} outside 5–60 %");
+    assert!(
+        (0.05..=0.60).contains(&coverage),
+        "character coverage {coverage:.3} outside 5–60 %"
+    );
     let ward_mean = mean_in(ward, &m);
     let ward_lum = luminance(ward_mean);
     let ward_rb = ward_mean[0] / ward_mean[2].max(1e-4);
@@ -80,10 +95,23 @@ fn every_model_renders_the_character() {
         let mean = mean_in(img, &m);
         let lum = luminance(mean);
         let rb = mean[0] / mean[2].max(1e-4);
-        println!("{:>15}: mean rgb {:.3?} luminance {:.3} ({:.2}× ward) R/B {:.2}", model.name(), mean, lum, lum / ward_lum, rb);
-        assert!((0.25..=4.0).contains(&(lum / ward_lum)), "{model}: luminance {lum:.3} vs ward {ward_lum:.3}");
+        println!(
+            "{:>15}: mean rgb {:.3?} luminance {:.3} ({:.2}× ward) R/B {:.2}",
+            model.name(),
+            mean,
+            lum,
+            lum / ward_lum,
+            rb
+        );
+        assert!(
+            (0.25..=4.0).contains(&(lum / ward_lum)),
+            "{model}: luminance {lum:.3} vs ward {ward_lum:.3}"
+        );
         if matches!(model, ShadingModel::Dipole | ShadingModel::Oss) {
-            assert!(rb > ward_rb, "{model}: R/B {rb:.2} not redder than ward's {ward_rb:.2}");
+            assert!(
+                rb > ward_rb,
+                "{model}: R/B {rb:.2} not redder than ward's {ward_rb:.2}"
+            );
         }
     }
     // Every pair of models differs visibly inside the character. A printed variant only has to
@@ -99,10 +127,19 @@ fn every_model_renders_the_character() {
                 n += 1;
             }
             let diff = diff / n as f64;
-            println!("{:>15} vs {:<15} mean |Δ| = {:.2}/255", a.name(), b.name(), diff * 255.0);
+            println!(
+                "{:>15} vs {:<15} mean |Δ| = {:.2}/255",
+                a.name(),
+                b.name(),
+                diff * 255.0
+            );
             let variants = a.module() == b.module();
             let bound = if variants { 0.2 / 255.0 } else { 2.0 / 255.0 };
-            assert!(diff > bound, "{a} and {b} differ by only {:.2}/255", diff * 255.0);
+            assert!(
+                diff > bound,
+                "{a} and {b} differ by only {:.2}/255",
+                diff * 255.0
+            );
         }
     }
 }
@@ -111,21 +148,36 @@ fn every_model_renders_the_character() {
 fn radiance_is_finite_and_non_negative_for_every_model_and_material() {
     let gpu = gpu();
     let assets = assets();
-    let mut still = StillRenderer::with_format(&gpu, &assets, W, H, wgpu::TextureFormat::Rgba16Float).unwrap();
+    let mut still =
+        StillRenderer::with_format(&gpu, &assets, W, H, wgpu::TextureFormat::Rgba16Float).unwrap();
     for material in dermis_core::shading::material::PRESETS {
         for model in ShadingModel::ALL {
             for (clip, time) in [(0, 0.0), (1, 0.3), (2, 0.45)] {
-                let s = Shot { clip, time, props: true, ..Shot::new(model, *material) };
+                let s = Shot {
+                    clip,
+                    time,
+                    props: true,
+                    ..Shot::new(model, *material)
+                };
                 let pixels = still.render_radiance(&gpu, &assets, &s).unwrap();
-                let bad = pixels.iter().filter(|p| p.iter().any(|c| !c.is_finite() || *c < 0.0)).count();
-                assert_eq!(bad, 0, "{model} / {} clip {clip}: {bad} non-finite or negative pixels", material.name);
+                let bad = pixels
+                    .iter()
+                    .filter(|p| p.iter().any(|c| !c.is_finite() || *c < 0.0))
+                    .count();
+                assert_eq!(
+                    bad, 0,
+                    "{model} / {} clip {clip}: {bad} non-finite or negative pixels",
+                    material.name
+                );
             }
         }
     }
 }
 
 fn golden_path(model: ShadingModel) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/golden").join(format!("{}.png", model.name()))
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/golden")
+        .join(format!("{}.png", model.name()))
 }
 
 /// Golden images: regenerate with `DERMIS_UPDATE_GOLDEN=1 cargo test --test render_models`.
@@ -145,13 +197,26 @@ fn golden_images_for_a_fixed_pose() {
             continue;
         }
         let golden = image::open(&path)
-            .unwrap_or_else(|e| panic!("{}: {e} (regenerate with DERMIS_UPDATE_GOLDEN=1)", path.display()))
+            .unwrap_or_else(|e| {
+                panic!(
+                    "{}: {e} (regenerate with DERMIS_UPDATE_GOLDEN=1)",
+                    path.display()
+                )
+            })
             .to_rgba8();
         assert_eq!((golden.width(), golden.height()), (img.width, img.height));
-        let diffs: Vec<u8> =
-            golden.as_raw().iter().zip(&img.pixels).map(|(a, b)| a.abs_diff(*b)).collect();
+        let diffs: Vec<u8> = golden
+            .as_raw()
+            .iter()
+            .zip(&img.pixels)
+            .map(|(a, b)| a.abs_diff(*b))
+            .collect();
         let mean = diffs.iter().map(|d| *d as f64).sum::<f64>() / diffs.len() as f64;
         let big = diffs.iter().filter(|d| **d > 24).count() as f64 / diffs.len() as f64;
-        assert!(mean <= 1.5 && big <= 0.01, "{model}: mean |Δ| {mean:.2}/255, {:.2} % pixels off by > 24", big * 100.0);
+        assert!(
+            mean <= 1.5 && big <= 0.01,
+            "{model}: mean |Δ| {mean:.2}/255, {:.2} % pixels off by > 24",
+            big * 100.0
+        );
     }
 }

@@ -8,34 +8,65 @@ use dermis_core::shading::ShadingModel;
 fn all_shaders() -> Vec<(String, String)> {
     let mut out: Vec<(String, String)> = ShadingModel::ALL
         .iter()
-        .map(|m| (format!("character/{}", m.name()), compose("character", &m.defs()).unwrap()))
+        .map(|m| {
+            (
+                format!("character/{}", m.name()),
+                compose("character", &m.defs()).unwrap(),
+            )
+        })
         .collect();
     let unlit = ShaderDefs::new().alias("shading_model", "unlit");
-    out.push(("character/unlit".into(), compose("character", &unlit).unwrap()));
+    out.push((
+        "character/unlit".into(),
+        compose("character", &unlit).unwrap(),
+    ));
     out.push(("prop".into(), compose("prop", &ShaderDefs::new()).unwrap()));
+    out.push(("ui".into(), compose("ui", &ShaderDefs::new()).unwrap()));
     out
 }
 
 fn validate(label: &str, source: &str) -> naga::Module {
     let module = naga::front::wgsl::parse_str(source)
         .unwrap_or_else(|e| panic!("{label}: {}", e.emit_to_string(source)));
-    let mut validator = naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::empty());
+    let mut validator = naga::valid::Validator::new(
+        naga::valid::ValidationFlags::all(),
+        naga::valid::Capabilities::empty(),
+    );
     let info = validator
         .validate(&module)
         .unwrap_or_else(|e| panic!("{label}: {}", e.emit_to_string(source)));
     // Both backends the app ships must accept it: SPIR-V (Vulkan) and GLSL ES 3.00 (GLES).
     naga::back::spv::write_vec(&module, &info, &naga::back::spv::Options::default(), None)
         .unwrap_or_else(|e| panic!("{label}: SPIR-V: {e}"));
-    for (stage, entry) in [(naga::ShaderStage::Vertex, "vs_main"), (naga::ShaderStage::Fragment, "fs_main")] {
+    for (stage, entry) in [
+        (naga::ShaderStage::Vertex, "vs_main"),
+        (naga::ShaderStage::Fragment, "fs_main"),
+    ] {
         let mut glsl = String::new();
         let options = naga::back::glsl::Options {
-            version: naga::back::glsl::Version::Embedded { version: 300, is_webgl: false },
+            version: naga::back::glsl::Version::Embedded {
+                version: 300,
+                is_webgl: false,
+            },
             ..Default::default()
         };
-        let pipeline = naga::back::glsl::PipelineOptions { shader_stage: stage, entry_point: entry.into(), multiview: None };
-        let mut writer = naga::back::glsl::Writer::new(&mut glsl, &module, &info, &options, &pipeline, naga::proc::BoundsCheckPolicies::default())
+        let pipeline = naga::back::glsl::PipelineOptions {
+            shader_stage: stage,
+            entry_point: entry.into(),
+            multiview: None,
+        };
+        let mut writer = naga::back::glsl::Writer::new(
+            &mut glsl,
+            &module,
+            &info,
+            &options,
+            &pipeline,
+            naga::proc::BoundsCheckPolicies::default(),
+        )
+        .unwrap_or_else(|e| panic!("{label}: GLSL {entry}: {e}"));
+        writer
+            .write()
             .unwrap_or_else(|e| panic!("{label}: GLSL {entry}: {e}"));
-        writer.write().unwrap_or_else(|e| panic!("{label}: GLSL {entry}: {e}"));
     }
     module
 }
@@ -44,8 +75,14 @@ fn validate(label: &str, source: &str) -> naga::Module {
 fn every_shader_passes_naga_validation_and_both_backends() {
     for (label, source) in all_shaders() {
         let module = validate(&label, &source);
-        assert!(module.entry_points.iter().any(|e| e.name == "vs_main"), "{label}");
-        assert!(module.entry_points.iter().any(|e| e.name == "fs_main"), "{label}");
+        assert!(
+            module.entry_points.iter().any(|e| e.name == "vs_main"),
+            "{label}"
+        );
+        assert!(
+            module.entry_points.iter().any(|e| e.name == "fs_main"),
+            "{label}"
+        );
     }
 }
 
@@ -53,15 +90,31 @@ fn every_shader_passes_naga_validation_and_both_backends() {
 fn every_module_file_is_used() {
     let composed: String = all_shaders().into_iter().map(|(_, s)| s).collect();
     for (name, _) in MODULES {
-        assert!(composed.contains(&format!("// ---- module {name} ----")), "module {name} is never composed");
+        assert!(
+            composed.contains(&format!("// ---- module {name} ----")),
+            "module {name} is never composed"
+        );
     }
 }
 
 #[test]
-fn props_carry_no_subsurface_code() {
-    let prop = compose("prop", &ShaderDefs::new()).unwrap();
-    for module in ["dipole", "oss", "ward", "ward_lobe", "fresnel", "skinning"] {
-        assert!(!prop.contains(&format!("// ---- module {module} ----")), "prop shader includes {module}");
+fn props_and_ui_carry_no_subsurface_code() {
+    for entry in ["prop", "ui"] {
+        let src = compose(entry, &ShaderDefs::new()).unwrap();
+        for module in [
+            "dipole",
+            "oss",
+            "burley",
+            "ward",
+            "ward_lobe",
+            "fresnel",
+            "skinning",
+        ] {
+            assert!(
+                !src.contains(&format!("// ---- module {module} ----")),
+                "{entry} shader includes {module}"
+            );
+        }
     }
 }
 
@@ -100,12 +153,19 @@ fn tint_accepts_every_shader() {
             .arg(&path)
             .output()
             .unwrap();
-        assert!(out.status.success(), "tint rejected {label}:\n{}", String::from_utf8_lossy(&out.stderr));
+        assert!(
+            out.status.success(),
+            "tint rejected {label}:\n{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
 
 fn which(name: &str) -> Result<std::path::PathBuf, ()> {
     let path = std::env::var_os("PATH").ok_or(())?;
-    std::env::split_paths(&path).map(|d| d.join(name)).find(|p| p.is_file()).ok_or(())
+    std::env::split_paths(&path)
+        .map(|d| d.join(name))
+        .find(|p| p.is_file())
+        .ok_or(())
 }

@@ -31,7 +31,12 @@ fn window_presents_and_screenshots_under_xvfb() {
         String::from_utf8_lossy(&out.stderr)
     );
     let img = image::open(&shot).unwrap().to_rgba8();
-    assert!(img.width() >= 640 && img.height() >= 360, "{}x{}", img.width(), img.height());
+    assert!(
+        img.width() >= 640 && img.height() >= 360,
+        "{}x{}",
+        img.width(),
+        img.height()
+    );
     // Not a blank frame: many distinct colours, and some warm (skin) pixels.
     let mut colours = std::collections::HashSet::new();
     let mut warm = 0;
@@ -42,6 +47,9 @@ fn window_presents_and_screenshots_under_xvfb() {
         }
     }
     assert!(colours.len() > 50, "only {} colours", colours.len());
-    assert!(warm > 500, "only {warm} warm pixels: is the character visible?");
+    assert!(
+        warm > 500,
+        "only {warm} warm pixels: is the character visible?"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }

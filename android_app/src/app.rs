@@ -181,7 +181,7 @@ impl Renderer {
         gpu.queue.submit([enc.finish()]);
         gpu.queue.present(frame);
         self.frames += 1;
-        if self.frames % 600 == 0 {
+        if self.frames.is_multiple_of(600) {
             log::info!("{} frames presented", self.frames);
         }
         status

@@ -52,7 +52,12 @@ pub struct Spring {
 
 impl Spring {
     pub fn new(value: Vec3, omega: f32) -> Self {
-        Self { value, velocity: Vec3::ZERO, omega, target: value }
+        Self {
+            value,
+            velocity: Vec3::ZERO,
+            omega,
+            target: value,
+        }
     }
 
     /// Advances `dt` seconds while the target moves linearly to `target`.
@@ -63,7 +68,7 @@ impl Spring {
         }
         let w = self.omega;
         let u = (target - self.target) / dt; // target velocity over the step
-        // e = x − c(t) obeys e'' + 2ωe' + ω²e = −2ωu; shift by the particular solution −2u/ω.
+                                             // e = x − c(t) obeys e'' + 2ωe' + ω²e = −2ωu; shift by the particular solution −2u/ω.
         let shift = -2.0 * u / w;
         let h0 = self.value - self.target - shift;
         let h0v = self.velocity - u;
@@ -111,7 +116,10 @@ impl FollowCamera {
 
     fn desired(&self, position: Vec3, yaw: f32) -> (Vec3, Vec3) {
         let rot = glam::Quat::from_rotation_y(yaw);
-        (position + rot * self.offset, position + rot * self.look_offset)
+        (
+            position + rot * self.offset,
+            position + rot * self.look_offset,
+        )
     }
 
     /// Places the camera at rest behind the character.
@@ -143,7 +151,8 @@ impl FollowCamera {
 
 /// A fixed camera looking from `eye` at `target` (for `render` and benches).
 pub fn look_at(eye: Vec3, target: Vec3, fov_y: f32, aspect: f32) -> Mat4 {
-    directx::perspective(fov_y, aspect.max(1e-3), 0.05, 200.0) * view::look_at_mat4(eye, target, Vec3::Y)
+    directx::perspective(fov_y, aspect.max(1e-3), 0.05, 200.0)
+        * view::look_at_mat4(eye, target, Vec3::Y)
 }
 
 #[cfg(test)]
@@ -153,7 +162,10 @@ mod tests {
     /// Scripted path: the character runs a curve, accelerating.
     fn path(t: f32) -> (Vec3, f32) {
         let yaw = 0.4 * t;
-        (Vec3::new(3.0 * (0.5 * t).sin(), 0.0, 2.0 * t + 0.3 * t * t), yaw)
+        (
+            Vec3::new(3.0 * (0.5 * t).sin(), 0.0, 2.0 * t + 0.3 * t * t),
+            yaw,
+        )
     }
 
     fn run(hz: f32, seconds: f32) -> Vec<(f32, Vec3)> {
@@ -166,9 +178,16 @@ mod tests {
         for i in 1..=steps {
             let t = i as f32 * dt;
             let (p, yaw) = path(t);
-            let capsule = Capsule { base: p, height: 1.8, radius: 0.4 };
+            let capsule = Capsule {
+                base: p,
+                height: 1.8,
+                radius: 0.4,
+            };
             cam.update(dt, p, yaw, &capsule);
-            assert!(!capsule.contains(cam.eye.value), "eye inside capsule at t={t}");
+            assert!(
+                !capsule.contains(cam.eye.value),
+                "eye inside capsule at t={t}"
+            );
             out.push((t, cam.eye.value));
         }
         out
@@ -182,9 +201,17 @@ mod tests {
         // Compare at the whole-second marks every rate hits.
         for s in 1..=6 {
             let t = s as f32;
-            let at = |v: &[(f32, Vec3)]| v.iter().min_by(|x, y| (x.0 - t).abs().total_cmp(&(y.0 - t).abs())).unwrap().1;
+            let at = |v: &[(f32, Vec3)]| {
+                v.iter()
+                    .min_by(|x, y| (x.0 - t).abs().total_cmp(&(y.0 - t).abs()))
+                    .unwrap()
+                    .1
+            };
             let (pa, pb, pc) = (at(&a), at(&b), at(&c));
-            assert!(pa.distance(pb) < 0.01 && pb.distance(pc) < 0.01, "t={t}: {pa} {pb} {pc}");
+            assert!(
+                pa.distance(pb) < 0.01 && pb.distance(pc) < 0.01,
+                "t={t}: {pa} {pb} {pc}"
+            );
         }
     }
 
@@ -199,7 +226,11 @@ mod tests {
 
     #[test]
     fn capsule_push_out() {
-        let c = Capsule { base: Vec3::ZERO, height: 2.0, radius: 0.5 };
+        let c = Capsule {
+            base: Vec3::ZERO,
+            height: 2.0,
+            radius: 0.5,
+        };
         let p = c.push_out(Vec3::new(0.1, 1.0, 0.0), 0.0);
         assert!((p.distance(Vec3::new(0.0, 1.0, 0.0)) - 0.5).abs() < 1e-5);
         assert!(!c.contains(c.push_out(Vec3::new(0.0, 1.0, 0.0), 0.01)));

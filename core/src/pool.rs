@@ -29,8 +29,15 @@ impl<T> Pool<T> {
     pub fn with_capacity(capacity: usize) -> Self {
         assert!(capacity <= u32::MAX as usize, "pool capacity exceeds u32");
         let mut slots = Vec::with_capacity(capacity);
-        slots.extend((0..capacity).map(|_| Slot { generation: 0, value: None }));
-        Self { slots, free: (0..capacity as u32).rev().collect(), len: 0 }
+        slots.extend((0..capacity).map(|_| Slot {
+            generation: 0,
+            value: None,
+        }));
+        Self {
+            slots,
+            free: (0..capacity as u32).rev().collect(),
+            len: 0,
+        }
     }
 
     pub fn capacity(&self) -> usize {
@@ -56,11 +63,16 @@ impl<T> Pool<T> {
         debug_assert!(slot.value.is_none());
         slot.value = Some(value);
         self.len += 1;
-        Some(Handle { index, generation: slot.generation })
+        Some(Handle {
+            index,
+            generation: slot.generation,
+        })
     }
 
     fn slot(&self, h: Handle) -> Option<&Slot<T>> {
-        self.slots.get(h.index as usize).filter(|s| s.generation == h.generation)
+        self.slots
+            .get(h.index as usize)
+            .filter(|s| s.generation == h.generation)
     }
 
     pub fn contains(&self, h: Handle) -> bool {
@@ -98,9 +110,20 @@ impl<T> Pool<T> {
         for index in 0..self.slots.len() {
             let slot = &mut self.slots[index];
             let generation = slot.generation;
-            let Some(value) = slot.value.as_mut() else { continue };
-            if !keep(Handle { index: index as u32, generation }, value) {
-                self.remove(Handle { index: index as u32, generation });
+            let Some(value) = slot.value.as_mut() else {
+                continue;
+            };
+            if !keep(
+                Handle {
+                    index: index as u32,
+                    generation,
+                },
+                value,
+            ) {
+                self.remove(Handle {
+                    index: index as u32,
+                    generation,
+                });
             }
         }
     }
@@ -113,14 +136,30 @@ impl<T> Pool<T> {
     /// Live items in slot order (deterministic).
     pub fn iter(&self) -> impl Iterator<Item = (Handle, &T)> + '_ {
         self.slots.iter().enumerate().filter_map(|(i, s)| {
-            s.value.as_ref().map(|v| (Handle { index: i as u32, generation: s.generation }, v))
+            s.value.as_ref().map(|v| {
+                (
+                    Handle {
+                        index: i as u32,
+                        generation: s.generation,
+                    },
+                    v,
+                )
+            })
         })
     }
 
     pub fn iter_mut(&mut self) -> impl Iterator<Item = (Handle, &mut T)> + '_ {
         self.slots.iter_mut().enumerate().filter_map(|(i, s)| {
             let generation = s.generation;
-            s.value.as_mut().map(|v| (Handle { index: i as u32, generation }, v))
+            s.value.as_mut().map(|v| {
+                (
+                    Handle {
+                        index: i as u32,
+                        generation,
+                    },
+                    v,
+                )
+            })
         })
     }
 
@@ -164,7 +203,13 @@ mod tests {
         assert_eq!(p.get(b), Some(&"b"));
         assert_eq!(p.len(), 1);
         // Out-of-range handles too.
-        assert_eq!(p.get(Handle { index: 99, generation: 0 }), None);
+        assert_eq!(
+            p.get(Handle {
+                index: 99,
+                generation: 0
+            }),
+            None
+        );
     }
 
     #[test]
@@ -178,7 +223,10 @@ mod tests {
         for (_, v) in p.iter_mut() {
             *v *= 10;
         }
-        assert_eq!(p.iter().map(|(_, v)| *v).collect::<Vec<_>>(), vec![0, 20, 40]);
+        assert_eq!(
+            p.iter().map(|(_, v)| *v).collect::<Vec<_>>(),
+            vec![0, 20, 40]
+        );
         p.clear();
         assert!(p.is_empty());
         assert!(hs.iter().all(|h| p.get(*h).is_none()));

@@ -48,7 +48,10 @@ pub fn showroom() -> Vec<PropInstance> {
     }
     let place = |kind, x: f32, z: f32, yaw: f32| PropInstance {
         kind,
-        transform: Mat4::from_rotation_translation(Quat::from_rotation_y(yaw), Vec3::new(x, 0.0, z)),
+        transform: Mat4::from_rotation_translation(
+            Quat::from_rotation_y(yaw),
+            Vec3::new(x, 0.0, z),
+        ),
     };
     out.push(place(PropKind::Table, 2.6, -2.5, 0.3));
     out.push(place(PropKind::Chair, 1.6, -2.2, 2.2));
@@ -75,8 +78,12 @@ pub fn posed_bounds(model: &Model, pose: &Pose) -> Option<(Vec3, Vec3)> {
 pub fn frame_bounds(lo: Vec3, hi: Vec3, fov_y: f32, fill: f32, aspect: f32) -> (Vec3, Vec3) {
     let center = (lo + hi) * 0.5;
     let size = hi - lo;
-    let extent = size.y.max(size.x / aspect.max(0.1)).max(size.z * 0.5).max(1e-3);
-    let distance = extent * 0.5 / (fov_y * 0.5).tan() / fill.clamp(0.05, 1.0) + size.z * 0.5;
+    let extent = size
+        .y
+        .max(size.x / aspect.max(0.1))
+        .max(size.z * 0.5)
+        .max(1e-3);
+    let distance = extent * 0.5 / (fov_y * 0.5).tan() / fill.clamp(0.05, 20.0) + size.z * 0.5;
     let dir = Vec3::new(0.35, 0.12, 1.0).normalize();
     (center + dir * distance, center)
 }

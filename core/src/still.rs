@@ -4,7 +4,9 @@ use glam::{Mat4, Quat, Vec3};
 
 use crate::anim::Pose;
 use crate::camera::look_at;
-use crate::render::{DrawSet, FrameView, Gpu, Light, Offscreen, PassTimer, Renderer, RgbaImage, OFFSCREEN_FORMAT};
+use crate::render::{
+    DrawSet, FrameView, Gpu, Light, Offscreen, PassTimer, Renderer, RgbaImage, OFFSCREEN_FORMAT,
+};
 use crate::scene::{frame_bounds, posed_bounds, showroom, SceneAssets};
 use crate::shading::{Material, ShadingModel};
 
@@ -28,7 +30,15 @@ pub struct Shot {
 
 impl Shot {
     pub fn new(shading: ShadingModel, material: Material) -> Self {
-        Self { shading: Some(shading), material, clip: 0, time: 0.0, light: None, props: true, fill: 0.8 }
+        Self {
+            shading: Some(shading),
+            material,
+            clip: 0,
+            time: 0.0,
+            light: None,
+            props: true,
+            fill: 0.8,
+        }
     }
 }
 
@@ -70,7 +80,12 @@ impl StillRenderer {
     }
 
     /// Poses the character, places camera and light, writes uniforms; returns the view.
-    pub fn setup(&mut self, gpu: &Gpu, assets: &SceneAssets, shot: &Shot) -> Result<FrameView, String> {
+    pub fn setup(
+        &mut self,
+        gpu: &Gpu,
+        assets: &SceneAssets,
+        shot: &Shot,
+    ) -> Result<FrameView, String> {
         let model = &assets.character;
         if self.material != Some(shot.material) {
             self.renderer.set_material(&gpu.queue, &shot.material);
@@ -79,12 +94,19 @@ impl StillRenderer {
         self.pose.reset(model);
         if !model.animations.is_empty() {
             let clip = model.animations.get(shot.clip).ok_or_else(|| {
-                format!("{}: clip {} out of range (the model has {})", model.source, shot.clip, model.animations.len())
+                format!(
+                    "{}: clip {} out of range (the model has {})",
+                    model.source,
+                    shot.clip,
+                    model.animations.len()
+                )
             })?;
-            self.pose.apply_clip(clip, shot.time.clamp(0.0, clip.duration));
+            self.pose
+                .apply_clip(clip, shot.time.clamp(0.0, clip.duration));
         }
         self.pose.update_world(model);
-        let (lo, hi) = posed_bounds(model, &self.pose).ok_or_else(|| format!("{}: no skinned mesh", model.source))?;
+        let (lo, hi) = posed_bounds(model, &self.pose)
+            .ok_or_else(|| format!("{}: no skinned mesh", model.source))?;
         // Normalise any character to 1.75 m standing on the floor at the origin.
         let scale = 1.75 / (hi.y - lo.y).max(1e-6);
         let center = (lo + hi) * 0.5;
@@ -94,34 +116,66 @@ impl StillRenderer {
             Vec3::new(-center.x * scale, -lo.y * scale, -center.z * scale),
         );
         let (wlo, whi) = (world.transform_point3(lo), world.transform_point3(hi));
-        self.renderer.update_character(&gpu.queue, model, &self.pose, world);
+        self.renderer
+            .update_character(&gpu.queue, model, &self.pose, world);
         let (w, h) = (self.offscreen.targets.width, self.offscreen.targets.height);
         let aspect = w as f32 / h as f32;
         let fov = 40f32.to_radians();
         let (eye, target) = frame_bounds(wlo.min(whi), wlo.max(whi), fov, shot.fill, aspect);
-        let light = Light { position: shot.light.unwrap_or(Vec3::new(1.5, 3.0, 2.5)), ..Light::default() };
-        let view = FrameView { view_proj: look_at(eye, target, fov, aspect), camera_pos: eye, light, exposure: EXPOSURE };
+        let light = Light {
+            position: shot.light.unwrap_or(Vec3::new(1.5, 3.0, 2.5)),
+            ..Light::default()
+        };
+        let view = FrameView {
+            view_proj: look_at(eye, target, fov, aspect),
+            camera_pos: eye,
+            light,
+            exposure: EXPOSURE,
+        };
         self.renderer.prepare(&gpu.queue, &view);
         Ok(view)
     }
 
     /// Renders `shot` and reads the image back.
-    pub fn render(&mut self, gpu: &Gpu, assets: &SceneAssets, shot: &Shot) -> Result<RgbaImage, String> {
+    pub fn render(
+        &mut self,
+        gpu: &Gpu,
+        assets: &SceneAssets,
+        shot: &Shot,
+    ) -> Result<RgbaImage, String> {
         self.draw(gpu, assets, shot)?;
         Ok(self.offscreen.read(gpu))
     }
 
     /// Renders `shot` into an `Rgba16Float` target and returns raw radiance per pixel.
-    pub fn render_radiance(&mut self, gpu: &Gpu, assets: &SceneAssets, shot: &Shot) -> Result<Vec<[f32; 4]>, String> {
+    pub fn render_radiance(
+        &mut self,
+        gpu: &Gpu,
+        assets: &SceneAssets,
+        shot: &Shot,
+    ) -> Result<Vec<[f32; 4]>, String> {
         self.draw(gpu, assets, shot)?;
         Ok(self.offscreen.read_f16(gpu))
     }
 
     fn draw(&mut self, gpu: &Gpu, assets: &SceneAssets, shot: &Shot) -> Result<(), String> {
         self.setup(gpu, assets, shot)?;
-        let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
-        let draw = DrawSet { shading: shot.shading, character: true, props: shot.props };
-        self.renderer.encode(&mut encoder, &self.offscreen.targets, &self.offscreen.view, draw, None);
+        let mut encoder = gpu
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+        let draw = DrawSet {
+            shading: shot.shading,
+            character: true,
+            props: shot.props,
+        };
+        self.renderer.encode(
+            &mut encoder,
+            &self.offscreen.targets,
+            &self.offscreen.view,
+            draw,
+            None,
+            None,
+        );
         self.offscreen.copy_out(&mut encoder);
         gpu.queue.submit([encoder.finish()]);
         Ok(())
@@ -130,9 +184,22 @@ impl StillRenderer {
     /// Renders only the character pass with timestamps around it; returns GPU milliseconds.
     pub fn time_character_pass(&mut self, gpu: &Gpu, shading: Option<ShadingModel>) -> Option<f64> {
         let timer = self.timer.as_ref()?;
-        let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
-        let draw = DrawSet { shading, character: true, props: false };
-        self.renderer.encode(&mut encoder, &self.offscreen.targets, &self.offscreen.view, draw, Some(timer));
+        let mut encoder = gpu
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+        let draw = DrawSet {
+            shading,
+            character: true,
+            props: false,
+        };
+        self.renderer.encode(
+            &mut encoder,
+            &self.offscreen.targets,
+            &self.offscreen.view,
+            draw,
+            None,
+            Some(timer),
+        );
         timer.resolve(&mut encoder);
         gpu.queue.submit([encoder.finish()]);
         timer.read_ms(&gpu.device)
@@ -142,7 +209,13 @@ impl StillRenderer {
 impl RgbaImage {
     /// Saves as PNG.
     pub fn save_png(&self, path: &std::path::Path) -> Result<(), String> {
-        image::save_buffer(path, &self.pixels, self.width, self.height, image::ExtendedColorType::Rgba8)
-            .map_err(|e| format!("{}: {e}", path.display()))
+        image::save_buffer(
+            path,
+            &self.pixels,
+            self.width,
+            self.height,
+            image::ExtendedColorType::Rgba8,
+        )
+        .map_err(|e| format!("{}: {e}", path.display()))
     }
 }

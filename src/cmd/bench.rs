@@ -40,26 +40,61 @@ pub enum BenchKind {
 
 pub fn run(args: BenchArgs) -> Result<(), String> {
     match args.what {
-        BenchKind::Frame { rounds, frames, out, json } => frame(rounds.max(3), frames.max(10), out, json),
+        BenchKind::Frame {
+            rounds,
+            frames,
+            out,
+            json,
+        } => frame(rounds.max(3), frames.max(10), out, json),
     }
 }
 
-fn frame(rounds: usize, frames: usize, out: Option<PathBuf>, print_json: bool) -> Result<(), String> {
+fn frame(
+    rounds: usize,
+    frames: usize,
+    out: Option<PathBuf>,
+    print_json: bool,
+) -> Result<(), String> {
     let start = Instant::now();
     let assets = SceneAssets::load(&crate::paths::assets_dir(), None).map_err(|e| e.to_string())?;
     let gpu = Gpu::headless().map_err(|e| e.to_string())?;
     let (w, h) = (1280, 720);
     let mut still = StillRenderer::new(&gpu, &assets, w, h)?;
-    let first = Shot { clip: 1, time: 0.2, ..Shot::new(ShadingModel::Oss, SKIN1) };
+    let first = Shot {
+        clip: 1,
+        time: 0.2,
+        ..Shot::new(ShadingModel::Oss, SKIN1)
+    };
     still.render(&gpu, &assets, &first)?;
     let first_frame_ms = start.elapsed().as_secs_f64() * 1e3;
 
-    // Close-up: the character alone, filling the frame height.
-    let close = Shot { props: false, fill: 1.6, ..first };
-    let image = still.render(&gpu, &assets, &Shot { shading: Some(ShadingModel::Ward), ..close })?;
-    let bg = &image.pixels[0..3];
-    let covered = image.pixels.chunks_exact(4).filter(|p| (0..3).any(|k| p[k].abs_diff(bg[k]) > 3)).count();
-    let coverage = covered as f64 / (w * h) as f64;
+    // Close-up: the character alone, zoomed until it covers at least 40 % of the frame.
+    let mut close = Shot {
+        props: false,
+        ..first
+    };
+    let mut coverage = 0.0;
+    for fill in [1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 8.0] {
+        close.fill = fill;
+        let image = still.render(
+            &gpu,
+            &assets,
+            &Shot {
+                shading: Some(ShadingModel::Ward),
+                ..close
+            },
+        )?;
+        let bg = &image.pixels[0..3];
+        let covered = image
+            .pixels
+            .chunks_exact(4)
+            .filter(|p| (0..3).any(|k| p[k].abs_diff(bg[k]) > 3))
+            .count();
+        coverage = covered as f64 / (w * h) as f64;
+        if coverage >= 0.4 {
+            break;
+        }
+    }
 
     // CPU per frame: animation + joint palettes + uniforms + command encoding.
     let model = &assets.character;
@@ -74,10 +109,25 @@ fn frame(rounds: usize, frames: usize, out: Option<PathBuf>, print_json: bool) -
             pose.apply_clip(c, (f as f32 / 60.0) % c.duration.max(1e-3));
         }
         pose.update_world(model);
-        still.renderer.update_character(&gpu.queue, model, &pose, glam::Mat4::IDENTITY);
-        let mut encoder = gpu.device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
-        let draw = DrawSet { shading: Some(ShadingModel::Oss), character: true, props: true };
-        still.renderer.encode(&mut encoder, &still.offscreen.targets, &still.offscreen.view, draw, None);
+        still
+            .renderer
+            .update_character(&gpu.queue, model, &pose, glam::Mat4::IDENTITY);
+        let mut encoder = gpu
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+        let draw = DrawSet {
+            shading: Some(ShadingModel::Oss),
+            character: true,
+            props: true,
+        };
+        still.renderer.encode(
+            &mut encoder,
+            &still.offscreen.targets,
+            &still.offscreen.view,
+            draw,
+            None,
+            None,
+        );
         let cmd = encoder.finish();
         cpu_ms.push(t.elapsed().as_secs_f64() * 1e3);
         gpu.queue.submit([cmd]);
@@ -89,7 +139,8 @@ fn frame(rounds: usize, frames: usize, out: Option<PathBuf>, print_json: bool) -
 
     // GPU time per model, interleaved so drift affects every model alike.
     still.setup(&gpu, &assets, &close)?;
-    let mut models: Vec<Option<ShadingModel>> = ShadingModel::ALL.iter().map(|m| Some(*m)).collect();
+    let mut models: Vec<Option<ShadingModel>> =
+        ShadingModel::ALL.iter().map(|m| Some(*m)).collect();
     models.push(None);
     let mut gpu_ms: Vec<Vec<f64>> = vec![Vec::with_capacity(rounds); models.len()];
     if gpu.timestamps {
@@ -99,7 +150,9 @@ fn frame(rounds: usize, frames: usize, out: Option<PathBuf>, print_json: bool) -
         for r in 0..rounds {
             for k in 0..models.len() {
                 let i = (k + r) % models.len();
-                let ms = still.time_character_pass(&gpu, models[i]).ok_or("timestamp read failed")?;
+                let ms = still
+                    .time_character_pass(&gpu, models[i])
+                    .ok_or("timestamp read failed")?;
                 gpu_ms[i].push(ms);
             }
         }
@@ -138,25 +191,37 @@ fn frame(rounds: usize, frames: usize, out: Option<PathBuf>, print_json: bool) -
         return Ok(());
     }
     println!("adapter: {}  ({label})", gpu.adapter_name());
-    println!("time to first frame: {first_frame_ms:.0} ms (load + device + pipelines + first render)");
+    println!(
+        "time to first frame: {first_frame_ms:.0} ms (load + device + pipelines + first render)"
+    );
     println!(
         "CPU per frame (pose + palettes + encode): p50 {:.3} ms, p95 {:.3} ms over {frames} frames",
         percentile(&cpu_ms, 0.5),
         percentile(&cpu_ms, 0.95)
     );
-    println!("close-up character pass, {w}x{h}, character covers {:.0} % of the frame:", coverage * 100.0);
+    println!(
+        "close-up character pass, {w}x{h}, character covers {:.0} % of the frame:",
+        coverage * 100.0
+    );
     if !gpu.timestamps {
         println!("  (no TIMESTAMP_QUERY on this adapter: no GPU times)");
         return Ok(());
     }
-    println!("  {:<15} {:>12} {:>10} {:>18}", "model", "median ms", "× ward", "95 % CI");
+    println!(
+        "  {:<15} {:>12} {:>10} {:>18}",
+        "model", "median ms", "× ward", "95 % CI"
+    );
     for v in report["models"].as_array().into_iter().flatten() {
         println!(
             "  {:<15} {:>12.3} {:>10.3} {:>18}",
             v["model"].as_str().unwrap_or("?"),
             v["gpu_ms_median"].as_f64().unwrap_or(f64::NAN),
             v["ratio_to_ward"].as_f64().unwrap_or(f64::NAN),
-            format!("[{:.3}, {:.3}]", v["ratio_ci95"][0].as_f64().unwrap_or(f64::NAN), v["ratio_ci95"][1].as_f64().unwrap_or(f64::NAN)),
+            format!(
+                "[{:.3}, {:.3}]",
+                v["ratio_ci95"][0].as_f64().unwrap_or(f64::NAN),
+                v["ratio_ci95"][1].as_f64().unwrap_or(f64::NAN)
+            ),
         );
     }
     Ok(())

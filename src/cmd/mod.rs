@@ -1,4 +1,5 @@
 pub mod bench;
+pub mod play;
 pub mod pose;
 pub mod render;
 pub mod stats;

@@ -21,8 +21,12 @@ pub fn run(
         return Err(format!("time {time} is not a finite number of seconds"));
     }
     let m = load_gltf(model).map_err(|e| e.to_string())?;
-    let (_, mesh, _) = first_skinned_mesh(&m)
-        .ok_or_else(|| format!("{}: no skinned mesh (no node with both mesh and skin)", m.source))?;
+    let (_, mesh, _) = first_skinned_mesh(&m).ok_or_else(|| {
+        format!(
+            "{}: no skinned mesh (no node with both mesh and skin)",
+            m.source
+        )
+    })?;
     let anim = m.animations.get(clip).ok_or_else(|| {
         format!(
             "{}: clip {clip} out of range (the model has {} clips)",
@@ -89,7 +93,9 @@ mod tests {
         assert_eq!(list.len(), 2);
         assert_eq!(list[1]["index"], 3);
         assert_eq!(list[1]["position"].as_array().unwrap().len(), 3);
-        assert!(run(&p, 99, 0.0, None, true).unwrap_err().contains("clip 99 out of range"));
+        assert!(run(&p, 99, 0.0, None, true)
+            .unwrap_err()
+            .contains("clip 99 out of range"));
         let e = run(&p, 0, 0.0, Some(vec![1_000_000]), true).unwrap_err();
         assert!(e.contains("vertex 1000000 out of range"), "{e}");
         assert!(run(Path::new("/nonexistent.glb"), 0, 0.0, None, true).is_err());

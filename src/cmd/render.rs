@@ -42,9 +42,17 @@ pub struct RenderArgs {
 }
 
 pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
-    let (w, h) = s.split_once(['x', 'X']).ok_or_else(|| format!("size `{s}` is not WxH"))?;
-    let w: u32 = w.trim().parse().map_err(|_| format!("bad width in `{s}`"))?;
-    let h: u32 = h.trim().parse().map_err(|_| format!("bad height in `{s}`"))?;
+    let (w, h) = s
+        .split_once(['x', 'X'])
+        .ok_or_else(|| format!("size `{s}` is not WxH"))?;
+    let w: u32 = w
+        .trim()
+        .parse()
+        .map_err(|_| format!("bad width in `{s}`"))?;
+    let h: u32 = h
+        .trim()
+        .parse()
+        .map_err(|_| format!("bad height in `{s}`"))?;
     if !(1..=8192).contains(&w) || !(1..=8192).contains(&h) {
         return Err(format!("size `{s}` out of range (1..=8192 each)"));
     }
@@ -54,16 +62,23 @@ pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
 pub fn parse_vec3(s: &str) -> Result<Vec3, String> {
     let v: Vec<f32> = s
         .split(',')
-        .map(|p| p.trim().parse::<f32>().map_err(|_| format!("`{s}` is not X,Y,Z")))
+        .map(|p| {
+            p.trim()
+                .parse::<f32>()
+                .map_err(|_| format!("`{s}` is not X,Y,Z"))
+        })
         .collect::<Result<_, _>>()?;
     match v[..] {
         [x, y, z] if v.iter().all(|c| c.is_finite() && c.abs() < 1e4) => Ok(Vec3::new(x, y, z)),
-        _ => Err(format!("`{s}` is not X,Y,Z with finite coordinates below 1e4")),
+        _ => Err(format!(
+            "`{s}` is not X,Y,Z with finite coordinates below 1e4"
+        )),
     }
 }
 
 pub fn run(args: RenderArgs) -> Result<(), String> {
-    let assets = SceneAssets::load(&crate::paths::assets_dir(), args.model.as_deref()).map_err(|e| e.to_string())?;
+    let assets = SceneAssets::load(&crate::paths::assets_dir(), args.model.as_deref())
+        .map_err(|e| e.to_string())?;
     let gpu = Gpu::headless().map_err(|e| e.to_string())?;
     let (w, h) = args.size;
     let mut still = StillRenderer::new(&gpu, &assets, w, h)?;
@@ -76,6 +91,14 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
     };
     let image = still.render(&gpu, &assets, &shot)?;
     image.save_png(&args.out)?;
-    println!("{}: {} {} {}x{} on {}", args.out.display(), args.shading, args.material.name, w, h, gpu.adapter_name());
+    println!(
+        "{}: {} {} {}x{} on {}",
+        args.out.display(),
+        args.shading,
+        args.material.name,
+        w,
+        h,
+        gpu.adapter_name()
+    );
     Ok(())
 }

@@ -23,7 +23,12 @@ pub fn median(xs: &[f64]) -> f64 {
 /// Paired ratio a/b: geometric mean of the per-round ratios with a 95 % confidence interval
 /// (normal approximation on the log ratios). NaNs when there are fewer than 2 pairs.
 pub fn ratio_ci(a: &[f64], b: &[f64]) -> (f64, f64, f64) {
-    let logs: Vec<f64> = a.iter().zip(b).filter(|(x, y)| **x > 0.0 && **y > 0.0).map(|(x, y)| (x / y).ln()).collect();
+    let logs: Vec<f64> = a
+        .iter()
+        .zip(b)
+        .filter(|(x, y)| **x > 0.0 && **y > 0.0)
+        .map(|(x, y)| (x / y).ln())
+        .collect();
     if logs.len() < 2 {
         return (f64::NAN, f64::NAN, f64::NAN);
     }

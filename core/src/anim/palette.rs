@@ -11,7 +11,9 @@ use crate::asset::Model;
 /// `out[j] = world(joint j) · inverseBind[j]` for skin `skin`. Entries past the skin's joint
 /// count are left untouched; joints past `out.len()` are not written.
 pub fn joint_palette(model: &Model, skin: usize, pose: &Pose, out: &mut [Mat4]) {
-    let Some(skin) = model.skins.get(skin) else { return };
+    let Some(skin) = model.skins.get(skin) else {
+        return;
+    };
     for ((o, &node), ibm) in out.iter_mut().zip(&skin.joints).zip(&skin.inverse_bind) {
         *o = pose.worlds.get(node).copied().unwrap_or(Mat4::IDENTITY) * *ibm;
     }
@@ -19,20 +21,29 @@ pub fn joint_palette(model: &Model, skin: usize, pose: &Pose, out: &mut [Mat4]) 
 
 /// The first node (by index) that has both a mesh and a skin: (node, mesh, skin).
 pub fn first_skinned_mesh(model: &Model) -> Option<(usize, usize, usize)> {
-    model.nodes.iter().enumerate().find_map(|(i, n)| Some((i, n.mesh?, n.skin?)))
+    model
+        .nodes
+        .iter()
+        .enumerate()
+        .find_map(|(i, n)| Some((i, n.mesh?, n.skin?)))
 }
 
 /// World-space positions of every vertex of every primitive of `mesh` (primitive order),
 /// skinned with the skin of the first node that uses `mesh`; a rigid mesh gets that node's
 /// world transform. Empty when no node uses `mesh`.
 pub fn skin_positions(model: &Model, mesh: usize, pose: &Pose) -> Vec<Vec3> {
-    let Some(m) = model.meshes.get(mesh) else { return Vec::new() };
+    let Some(m) = model.meshes.get(mesh) else {
+        return Vec::new();
+    };
     let Some(node) = model.nodes.iter().position(|n| n.mesh == Some(mesh)) else {
         return Vec::new();
     };
     let count: usize = m.primitives.iter().map(|p| p.vertices.len()).sum();
     let mut out = Vec::with_capacity(count);
-    match model.nodes[node].skin.and_then(|s| model.skins.get(s).map(|sk| (s, sk))) {
+    match model.nodes[node]
+        .skin
+        .and_then(|s| model.skins.get(s).map(|sk| (s, sk)))
+    {
         Some((s, skin)) => {
             let mut palette = vec![Mat4::IDENTITY; skin.joints.len()];
             joint_palette(model, s, pose, &mut palette);

@@ -20,11 +20,20 @@ impl Pose {
     pub fn new(model: &Model) -> Self {
         let n = model.nodes.len();
         let mut order = Vec::with_capacity(n);
-        let mut stack: Vec<usize> =
-            (0..n).rev().filter(|&i| model.nodes[i].parent.is_none()).collect();
+        let mut stack: Vec<usize> = (0..n)
+            .rev()
+            .filter(|&i| model.nodes[i].parent.is_none())
+            .collect();
         while let Some(i) = stack.pop() {
             order.push(i);
-            stack.extend(model.nodes[i].children.iter().rev().copied().filter(|&c| c < n));
+            stack.extend(
+                model.nodes[i]
+                    .children
+                    .iter()
+                    .rev()
+                    .copied()
+                    .filter(|&c| c < n),
+            );
         }
         let mut pose = Self {
             locals: model.nodes.iter().map(|nd| nd.local).collect(),
@@ -47,7 +56,9 @@ impl Pose {
     pub fn apply_clip(&mut self, clip: &AnimationClip, t: f32) {
         let t = clamp_time(clip, t);
         for ch in &clip.channels {
-            let Some(l) = self.locals.get_mut(ch.node) else { continue };
+            let Some(l) = self.locals.get_mut(ch.node) else {
+                continue;
+            };
             match ch.property {
                 Property::Translation => l.translation = sample_vec3(ch, t),
                 Property::Rotation => l.rotation = sample_quat(ch, t),
@@ -60,9 +71,15 @@ impl Pose {
     /// (0 = unchanged, 1 = same as [`Pose::apply_clip`]); lerp for T/S, slerp for R.
     pub fn blend_clip(&mut self, clip: &AnimationClip, t: f32, weight: f32) {
         let t = clamp_time(clip, t);
-        let w = if weight.is_nan() { 0.0 } else { weight.clamp(0.0, 1.0) };
+        let w = if weight.is_nan() {
+            0.0
+        } else {
+            weight.clamp(0.0, 1.0)
+        };
         for ch in &clip.channels {
-            let Some(l) = self.locals.get_mut(ch.node) else { continue };
+            let Some(l) = self.locals.get_mut(ch.node) else {
+                continue;
+            };
             match ch.property {
                 Property::Translation => l.translation = l.translation.lerp(sample_vec3(ch, t), w),
                 Property::Rotation => {

@@ -29,15 +29,27 @@ fn locate(times: &[f32], interpolation: Interpolation, t: f32) -> At {
         return At::Key(i);
     }
     let dt = times[next] - times[i];
-    let u = if dt > 0.0 { ((t - times[i]) / dt).clamp(0.0, 1.0) } else { 0.0 };
+    let u = if dt > 0.0 {
+        ((t - times[i]) / dt).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
     At::Between(i, u, dt)
 }
 
 /// Component `n`-vector of key `k`: for cubic spline `part` 0 = in-tangent, 1 = value,
 /// 2 = out-tangent; ignored otherwise.
 fn get(ch: &Channel, n: usize, k: usize, part: usize) -> Vec4 {
-    let stride = if ch.interpolation == Interpolation::CubicSpline { 3 * n } else { n };
-    let off = if ch.interpolation == Interpolation::CubicSpline { part * n } else { 0 };
+    let stride = if ch.interpolation == Interpolation::CubicSpline {
+        3 * n
+    } else {
+        n
+    };
+    let off = if ch.interpolation == Interpolation::CubicSpline {
+        part * n
+    } else {
+        0
+    };
     let at = k * stride + off;
     let mut v = [0.0f32; 4];
     if let Some(s) = ch.values.get(at..at + n) {

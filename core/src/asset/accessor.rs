@@ -117,14 +117,17 @@ pub(crate) fn view_bytes<'b>(
         .get(bi)
         .ok_or_else(|| format!("bufferView {} references missing buffer {bi}", view.index()))?;
     let start = view.offset();
-    let end = start.checked_add(view.length()).filter(|&e| e <= buf.len()).ok_or_else(|| {
-        format!(
-            "bufferView {} out of bounds: bytes {start}+{} exceed buffer {bi} ({} bytes)",
-            view.index(),
-            view.length(),
-            buf.len()
-        )
-    })?;
+    let end = start
+        .checked_add(view.length())
+        .filter(|&e| e <= buf.len())
+        .ok_or_else(|| {
+            format!(
+                "bufferView {} out of bounds: bytes {start}+{} exceed buffer {bi} ({} bytes)",
+                view.index(),
+                view.length(),
+                buf.len()
+            )
+        })?;
     Ok(&buf[start..end])
 }
 
@@ -159,7 +162,9 @@ fn dense<'b>(
     what: &str,
     elem: usize,
 ) -> Result<Option<Dense<'b>>, String> {
-    let Some(view) = acc.view() else { return Ok(None) };
+    let Some(view) = acc.view() else {
+        return Ok(None);
+    };
     let bytes = view_bytes(buffers, &view)?;
     let stride = view.stride().unwrap_or(elem);
     if stride < elem {
@@ -169,11 +174,16 @@ fn dense<'b>(
         ));
     }
     if stride > 252 && view.stride().is_some() {
-        return Err(format!("{what}: byteStride {stride} above the glTF maximum 252"));
+        return Err(format!(
+            "{what}: byteStride {stride} above the glTF maximum 252"
+        ));
     }
     check_range(what, bytes.len(), acc.offset(), stride, elem, acc.count())?;
     let start = acc.offset().min(bytes.len());
-    Ok(Some(Dense { bytes: &bytes[start..], stride }))
+    Ok(Some(Dense {
+        bytes: &bytes[start..],
+        stride,
+    }))
 }
 
 /// Validates the accessor's shape and returns (count, components, element bytes).
@@ -182,7 +192,9 @@ fn shape(acc: &gltf::Accessor<'_>, what: &str) -> Result<(usize, usize, usize), 
     let n = comp_count(acc.dimensions());
     let cs = comp_size(acc.data_type());
     if count > MAX_ACCESSOR_COUNT {
-        return Err(format!("{what}: count {count} above the limit {MAX_ACCESSOR_COUNT}"));
+        return Err(format!(
+            "{what}: count {count} above the limit {MAX_ACCESSOR_COUNT}"
+        ));
     }
     if count.saturating_mul(n) > MAX_ACCESSOR_SCALARS {
         return Err(format!(
@@ -203,10 +215,15 @@ fn for_each_sparse(
     elem: usize,
     mut put: impl FnMut(usize, &[u8], usize),
 ) -> Result<(), String> {
-    let Some(sparse) = acc.sparse() else { return Ok(()) };
+    let Some(sparse) = acc.sparse() else {
+        return Ok(());
+    };
     let n = sparse.count();
     if n > acc.count() {
-        return Err(format!("{what}: sparse count {n} above accessor count {}", acc.count()));
+        return Err(format!(
+            "{what}: sparse count {n} above accessor count {}",
+            acc.count()
+        ));
     }
     let idx = sparse.indices();
     let isz = match idx.index_type() {
@@ -215,10 +232,24 @@ fn for_each_sparse(
         IndexType::U32 => 4,
     };
     let ib = view_bytes(buffers, &idx.view())?;
-    check_range(&format!("{what} sparse indices"), ib.len(), idx.offset(), isz, isz, n)?;
+    check_range(
+        &format!("{what} sparse indices"),
+        ib.len(),
+        idx.offset(),
+        isz,
+        isz,
+        n,
+    )?;
     let vals = sparse.values();
     let vb = view_bytes(buffers, &vals.view())?;
-    check_range(&format!("{what} sparse values"), vb.len(), vals.offset(), elem, elem, n)?;
+    check_range(
+        &format!("{what} sparse values"),
+        vb.len(),
+        vals.offset(),
+        elem,
+        elem,
+        n,
+    )?;
     let it = match isz {
         1 => DataType::U8,
         2 => DataType::U16,
@@ -249,7 +280,9 @@ pub(crate) fn read_f32(
     let t = acc.data_type();
     let norm = acc.normalized();
     if norm && matches!(t, DataType::U32 | DataType::F32) {
-        return Err(format!("{what}: normalized is invalid for this component type"));
+        return Err(format!(
+            "{what}: normalized is invalid for this component type"
+        ));
     }
     let cs = comp_size(t);
     let mut out = vec![0.0f32; count * n];

@@ -11,7 +11,10 @@ pub struct AssetError {
 
 impl AssetError {
     pub fn new(file: impl Into<String>, problem: impl Into<String>) -> Self {
-        Self { file: file.into(), problem: problem.into() }
+        Self {
+            file: file.into(),
+            problem: problem.into(),
+        }
     }
 }
 

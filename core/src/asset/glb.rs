@@ -24,14 +24,19 @@ fn u32_at(bytes: &[u8], at: usize) -> Option<u32> {
 /// Splits a GLB file into its JSON and BIN chunks. Errors are plain problem strings.
 pub(crate) fn parse(bytes: &[u8]) -> Result<Glb<'_>, String> {
     if bytes.len() < 12 {
-        return Err(format!("truncated GLB header: {} bytes, need 12", bytes.len()));
+        return Err(format!(
+            "truncated GLB header: {} bytes, need 12",
+            bytes.len()
+        ));
     }
     if !is_glb(bytes) {
         return Err("bad GLB magic (expected \"glTF\")".into());
     }
     let version = u32_at(bytes, 4).unwrap_or(0);
     if version != 2 {
-        return Err(format!("unsupported GLB version {version} (only 2 is supported)"));
+        return Err(format!(
+            "unsupported GLB version {version} (only 2 is supported)"
+        ));
     }
     let declared = u32_at(bytes, 8).unwrap_or(0) as usize;
     if declared > bytes.len() {
@@ -41,7 +46,9 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Glb<'_>, String> {
         ));
     }
     if declared < 12 {
-        return Err(format!("corrupt GLB header: declared length {declared} is below 12"));
+        return Err(format!(
+            "corrupt GLB header: declared length {declared} is below 12"
+        ));
     }
     let data = &bytes[..declared];
 
@@ -75,7 +82,11 @@ pub(crate) fn parse(bytes: &[u8]) -> Result<Glb<'_>, String> {
             _ => log::debug!("skipping unknown GLB chunk type 0x{kind:08x}"),
         }
         // Chunks are 4-byte aligned; tolerate a missing final pad.
-        at = end.checked_add(3).map(|e| e & !3).unwrap_or(usize::MAX).min(data.len());
+        at = end
+            .checked_add(3)
+            .map(|e| e & !3)
+            .unwrap_or(usize::MAX)
+            .min(data.len());
         index += 1;
     }
     let json = json.ok_or("GLB has no JSON chunk")?;

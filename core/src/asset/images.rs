@@ -15,13 +15,22 @@ pub(crate) fn decode_image(bytes: &[u8], srgb: bool, what: &str) -> Result<Textu
         .with_guessed_format()
         .map_err(|e| format!("{what}: cannot read image: {e}"))?;
     if reader.format().is_none() {
-        return Err(format!("{what}: unknown image format (PNG and JPEG are supported)"));
+        return Err(format!(
+            "{what}: unknown image format (PNG and JPEG are supported)"
+        ));
     }
     reader.limits(limits);
-    let img = reader.decode().map_err(|e| format!("{what}: cannot decode image: {e}"))?;
+    let img = reader
+        .decode()
+        .map_err(|e| format!("{what}: cannot decode image: {e}"))?;
     let rgba = img.into_rgba8();
     let (width, height) = rgba.dimensions();
-    Ok(TextureImage { width, height, rgba8: rgba.into_raw(), srgb })
+    Ok(TextureImage {
+        width,
+        height,
+        rgba8: rgba.into_raw(),
+        srgb,
+    })
 }
 
 #[cfg(test)]
@@ -37,7 +46,8 @@ mod tests {
     fn decodes_png_to_rgba8() {
         let mut png = Vec::new();
         let img = image::RgbImage::from_pixel(3, 2, image::Rgb([10, 20, 30]));
-        img.write_to(&mut Cursor::new(&mut png), image::ImageFormat::Png).unwrap();
+        img.write_to(&mut Cursor::new(&mut png), image::ImageFormat::Png)
+            .unwrap();
         let t = decode_image(&png, true, "image 0").unwrap();
         assert_eq!((t.width, t.height, t.rgba8.len()), (3, 2, 24));
         assert_eq!(&t.rgba8[..4], &[10, 20, 30, 255]);

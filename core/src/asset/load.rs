@@ -61,26 +61,55 @@ pub fn load_gltf_slice(
     name: &str,
     resolve: &dyn Fn(&str) -> Result<Vec<u8>, String>,
 ) -> Result<Model, AssetError> {
-    load(bytes, name, resolve).map_err(|p| AssetError::new(name, p))
+    // One line per problem, whatever the underlying library printed.
+    load(bytes, name, resolve).map_err(|p| AssetError::new(name, p.replace(['\n', '\r'], " ")))
 }
 
 fn map_gltf_error(e: gltf::Error) -> String {
     match e {
         gltf::Error::Deserialize(e) => format!("invalid JSON: {e}"),
         gltf::Error::Validation(errs) => {
-            let list: Vec<String> =
-                errs.iter().take(4).map(|(path, e)| format!("{path}: {e}")).collect();
+            let list: Vec<String> = errs
+                .iter()
+                .take(4)
+                .map(|(path, e)| format!("{path}: {e}"))
+                .collect();
             let more = errs.len().saturating_sub(4);
-            let more = if more > 0 { format!(" (+{more} more)") } else { String::new() };
+            let more = if more > 0 {
+                format!(" (+{more} more)")
+            } else {
+                String::new()
+            };
             format!("invalid glTF: {}{more}", list.join("; "))
         }
         e => format!("invalid glTF: {e}"),
     }
 }
 
+/// Checks what gltf-json's own validation indexes without checking (it would panic).
+fn precheck(root: &gltf::json::Root) -> Result<(), String> {
+    for (mi, mesh) in root.meshes.iter().enumerate() {
+        for (pi, prim) in mesh.primitives.iter().enumerate() {
+            for (sem, acc) in &prim.attributes {
+                if acc.value() >= root.accessors.len() {
+                    return Err(format!(
+                        "mesh {mi} primitive {pi}: attribute {} references missing accessor {}",
+                        sem.to_string(),
+                        acc.value()
+                    ));
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
 fn extension_supported(ext: &str) -> bool {
     ext.starts_with("KHR_materials_")
-        || matches!(ext, "KHR_texture_transform" | "KHR_mesh_quantization" | "KHR_lights_punctual")
+        || matches!(
+            ext,
+            "KHR_texture_transform" | "KHR_mesh_quantization" | "KHR_lights_punctual"
+        )
 }
 
 fn load(
@@ -88,16 +117,23 @@ fn load(
     _name: &str,
     resolve: &dyn Fn(&str) -> Result<Vec<u8>, String>,
 ) -> Result<Model, String> {
+    if bytes.is_empty() {
+        return Err("empty file (0 bytes)".into());
+    }
     let (json, bin) = if glb::is_glb(bytes) {
         let g = glb::parse(bytes)?;
         (g.json, g.bin)
     } else {
         (bytes, None)
     };
-    // The gltf crate is not expected to panic, but a parser bug must not take the app down.
-    let parsed = std::panic::catch_unwind(|| gltf::Gltf::from_slice(json))
-        .map_err(|_| "glTF parser failed on malformed input".to_string())?;
-    let doc = parsed.map_err(map_gltf_error)?.document;
+    let raw = gltf::Gltf::from_slice_without_validation(json).map_err(map_gltf_error)?;
+    let raw = raw.document.into_json();
+    precheck(&raw)?;
+    // Known gltf-json validation panics are prechecked above; the guard is defence in depth
+    // (it cannot help where panics abort, hence the precheck).
+    let validated = std::panic::catch_unwind(move || gltf::Document::from_json(raw))
+        .map_err(|_| "glTF validation failed on malformed input".to_string())?;
+    let doc = validated.map_err(map_gltf_error)?;
     let root = doc.as_json();
 
     for ext in doc.extensions_required() {
@@ -132,8 +168,12 @@ fn load(
             }
             continue;
         };
-        let skin = skins.get(si).ok_or_else(|| format!("node {ni} references missing skin {si}"))?;
-        let info = infos.get(mi).ok_or_else(|| format!("node {ni} references missing mesh {mi}"))?;
+        let skin = skins
+            .get(si)
+            .ok_or_else(|| format!("node {ni} references missing skin {si}"))?;
+        let info = infos
+            .get(mi)
+            .ok_or_else(|| format!("node {ni} references missing mesh {mi}"))?;
         if info.has_rigid_primitive {
             return Err(format!(
                 "node {ni} has skin {si} but a primitive of mesh {mi} lacks JOINTS_0/WEIGHTS_0"
@@ -152,8 +192,8 @@ fn load(
     let (materials, textures) = load_materials(&doc, &buffers, resolve)?;
 
     let mut animations = Vec::with_capacity(root.animations.len());
-    for anim in doc.animations() {
-        animations.push(load_animation(&buffers, &anim, nodes.len())?);
+    for ai in 0..root.animations.len() {
+        animations.push(load_animation(&doc, &buffers, ai, nodes.len())?);
     }
 
     Ok(Model {
@@ -189,15 +229,18 @@ fn load_buffers<'a>(
     let mut data = Vec::with_capacity(root.buffers.len());
     for (i, b) in root.buffers.iter().enumerate() {
         let len = b.byte_length.0 as usize; // ≤ 256 MiB, checked above
-        let short = |have: usize| {
-            format!("buffer {i}: byteLength {len} but only {have} bytes of data")
-        };
+        let short =
+            |have: usize| format!("buffer {i}: byteLength {len} but only {have} bytes of data");
         let bytes: Cow<'a, [u8]> = match b.uri.as_deref() {
             None => {
                 if i != 0 {
-                    return Err(format!("buffer {i} has no uri (only buffer 0 may use the GLB BIN chunk)"));
+                    return Err(format!(
+                        "buffer {i} has no uri (only buffer 0 may use the GLB BIN chunk)"
+                    ));
                 }
-                let bin = bin.ok_or_else(|| format!("buffer {i} has no uri and there is no GLB BIN chunk"))?;
+                let bin = bin.ok_or_else(|| {
+                    format!("buffer {i} has no uri and there is no GLB BIN chunk")
+                })?;
                 if bin.len() < len {
                     return Err(short(bin.len()));
                 }
@@ -240,7 +283,10 @@ fn load_materials(
         let mut base_color_texture = None;
         if let Some(info) = pbr.base_color_texture() {
             if info.tex_coord() != 0 {
-                log::warn!("material {mi}: base colour uses TEXCOORD_{}; TEXCOORD_0 is used", info.tex_coord());
+                log::warn!(
+                    "material {mi}: base colour uses TEXCOORD_{}; TEXCOORD_0 is used",
+                    info.tex_coord()
+                );
             }
             let ti = info.texture().index();
             let ii = root
@@ -282,7 +328,10 @@ fn load_image(
     index: usize,
 ) -> Result<TextureImage, String> {
     let what = format!("image {index}");
-    let image = doc.images().nth(index).ok_or_else(|| format!("missing {what}"))?;
+    let image = doc
+        .images()
+        .nth(index)
+        .ok_or_else(|| format!("missing {what}"))?;
     match image.source() {
         gltf::image::Source::View { view, .. } => {
             let bytes = view_bytes(buffers, &view).map_err(|e| format!("{what}: {e}"))?;

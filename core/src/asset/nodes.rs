@@ -1,7 +1,7 @@
 //! The node hierarchy (one parent per node, no cycles), node transforms, scene roots and skins.
 
-use gltf::accessor::Dimensions;
 use glam::{Mat4, Quat, Vec3};
+use gltf::accessor::Dimensions;
 
 use super::accessor::{expect_dims, read_f32, Buffers};
 use super::{Node, Skin, Transform, MAX_JOINTS};
@@ -15,9 +15,17 @@ fn transform(node: &gltf::Node<'_>) -> Result<Transform, String> {
                 return Err(format!("node {i} has a NaN/Inf matrix"));
             }
             let (scale, rotation, translation) = m.to_scale_rotation_translation();
-            Transform { translation, rotation, scale }
+            Transform {
+                translation,
+                rotation,
+                scale,
+            }
         }
-        gltf::scene::Transform::Decomposed { translation, rotation, scale } => Transform {
+        gltf::scene::Transform::Decomposed {
+            translation,
+            rotation,
+            scale,
+        } => Transform {
             translation: Vec3::from_array(translation),
             rotation: Quat::from_array(rotation),
             scale: Vec3::from_array(scale),
@@ -28,10 +36,13 @@ fn transform(node: &gltf::Node<'_>) -> Result<Transform, String> {
         return Err(format!("node {i} has a NaN/Inf transform"));
     }
     let len = t.rotation.length();
-    if !(len > 1e-6) {
+    if len.is_nan() || len <= 1e-6 {
         return Err(format!("node {i} has a zero-length rotation quaternion"));
     }
-    Ok(Transform { rotation: t.rotation / len, ..t })
+    Ok(Transform {
+        rotation: t.rotation / len,
+        ..t
+    })
 }
 
 /// Nodes with parents; errors on two parents or cycles.
@@ -95,7 +106,9 @@ pub(crate) fn scene_roots(doc: &gltf::Document, nodes: &[Node]) -> Result<Vec<us
             }
             Ok(roots)
         }
-        None => Ok((0..nodes.len()).filter(|&i| nodes[i].parent.is_none()).collect()),
+        None => Ok((0..nodes.len())
+            .filter(|&i| nodes[i].parent.is_none())
+            .collect()),
     }
 }
 
@@ -136,5 +149,9 @@ pub(crate) fn load_skin(
             raw.chunks_exact(16).map(Mat4::from_cols_slice).collect()
         }
     };
-    Ok(Skin { name: skin.name().map(str::to_owned), joints, inverse_bind })
+    Ok(Skin {
+        name: skin.name().map(str::to_owned),
+        joints,
+        inverse_bind,
+    })
 }

@@ -5,7 +5,11 @@
 use glam::{Vec2, Vec3};
 
 fn tri(indices: &[u32], t: usize) -> [usize; 3] {
-    [indices[3 * t] as usize, indices[3 * t + 1] as usize, indices[3 * t + 2] as usize]
+    [
+        indices[3 * t] as usize,
+        indices[3 * t + 1] as usize,
+        indices[3 * t + 2] as usize,
+    ]
 }
 
 /// Smooth normals: each vertex gets the normalised sum of the (area-weighted) face normals of
@@ -22,7 +26,9 @@ pub fn smooth_normals(positions: &[Vec3], indices: &[u32]) -> Vec<Vec3> {
             acc[c] += n;
         }
     }
-    acc.into_iter().map(|n| n.try_normalize().unwrap_or(Vec3::Y)).collect()
+    acc.into_iter()
+        .map(|n| n.try_normalize().unwrap_or(Vec3::Y))
+        .collect()
 }
 
 /// Tangents (xyz, w = handedness ±1) from the UV gradients of each triangle.
@@ -65,7 +71,11 @@ pub fn generate_tangents(
             let t = tan[v] - nrm * nrm.dot(tan[v]);
             match t.try_normalize() {
                 Some(t) => {
-                    let w = if nrm.cross(t).dot(bit[v]) < 0.0 { -1.0 } else { 1.0 };
+                    let w = if nrm.cross(t).dot(bit[v]) < 0.0 {
+                        -1.0
+                    } else {
+                        1.0
+                    };
                     [t.x, t.y, t.z, w]
                 }
                 None => {

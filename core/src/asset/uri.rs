@@ -21,11 +21,14 @@ pub(crate) fn resolve_uri(uri: &str) -> Result<UriRef, String> {
 
 fn strip_prefix_ci<'a>(s: &'a str, prefix: &str) -> Option<&'a str> {
     let head = s.get(..prefix.len())?;
-    head.eq_ignore_ascii_case(prefix).then(|| &s[prefix.len()..])
+    head.eq_ignore_ascii_case(prefix)
+        .then(|| &s[prefix.len()..])
 }
 
 fn decode_data_uri(rest: &str) -> Result<Vec<u8>, String> {
-    let comma = rest.find(',').ok_or("malformed data URI: no ',' separator")?;
+    let comma = rest
+        .find(',')
+        .ok_or("malformed data URI: no ',' separator")?;
     let (meta, payload) = (&rest[..comma], &rest[comma + 1..]);
     if !meta.split(';').any(|p| p.eq_ignore_ascii_case("base64")) {
         return Err("unsupported data URI: only base64 payloads are supported".into());
@@ -69,7 +72,10 @@ pub(crate) fn base64_decode(input: &[u8]) -> Result<Vec<u8>, String> {
     let mut bits = 0u32;
     for (i, &c) in trimmed.iter().enumerate() {
         let v = b64_value(c).ok_or_else(|| {
-            format!("malformed base64 in data URI: invalid character {:?} at {i}", c as char)
+            format!(
+                "malformed base64 in data URI: invalid character {:?} at {i}",
+                c as char
+            )
         })?;
         acc = (acc << 6) | v;
         bits += 6;

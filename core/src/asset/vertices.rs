@@ -1,9 +1,9 @@
 //! Mesh primitives: vertex attributes, indices, generated normals/tangents and all per-vertex
 //! validation (finite positions, weights, index ranges, matching attribute counts).
 
+use glam::{Vec2, Vec3};
 use gltf::accessor::{DataType, Dimensions};
 use gltf::mesh::{Mode, Semantic};
-use glam::{Vec2, Vec3};
 
 use super::accessor::{expect_dims, read_f32, read_u32, Buffers};
 use super::limits::{MAX_TOTAL_INDICES, MAX_TOTAL_VERTICES};
@@ -34,12 +34,18 @@ pub(crate) fn load_mesh(
     mesh: &gltf::Mesh<'_>,
     totals: &mut Totals,
 ) -> Result<(Mesh, MeshInfo), String> {
-    let mut info = MeshInfo { max_joint: None, has_rigid_primitive: false };
+    let mut info = MeshInfo {
+        max_joint: None,
+        has_rigid_primitive: false,
+    };
     let mut primitives = Vec::new();
     for prim in mesh.primitives() {
         let label = format!("mesh {} primitive {}", mesh.index(), prim.index());
         if prim.mode() != Mode::Triangles {
-            log::warn!("{label}: mode {:?} is not a triangle list; skipped", prim.mode());
+            log::warn!(
+                "{label}: mode {:?} is not a triangle list; skipped",
+                prim.mode()
+            );
             continue;
         }
         let (p, max_joint) = load_primitive(buffers, &prim, &label, totals)?;
@@ -49,7 +55,13 @@ pub(crate) fn load_mesh(
         }
         primitives.push(p);
     }
-    Ok((Mesh { name: mesh.name().map(str::to_owned), primitives }, info))
+    Ok((
+        Mesh {
+            name: mesh.name().map(str::to_owned),
+            primitives,
+        },
+        info,
+    ))
 }
 
 fn load_primitive(
@@ -58,7 +70,9 @@ fn load_primitive(
     label: &str,
     totals: &mut Totals,
 ) -> Result<(Primitive, Option<u32>), String> {
-    let pos_acc = prim.get(&Semantic::Positions).ok_or_else(|| format!("{label} has no POSITION"))?;
+    let pos_acc = prim
+        .get(&Semantic::Positions)
+        .ok_or_else(|| format!("{label} has no POSITION"))?;
     let n = pos_acc.count();
     // Every attribute of a primitive must have the same count.
     for (sem, acc) in prim.attributes() {
@@ -72,7 +86,9 @@ fn load_primitive(
     }
     totals.vertices = totals.vertices.saturating_add(n);
     if totals.vertices > MAX_TOTAL_VERTICES {
-        return Err(format!("too many vertices: above the limit {MAX_TOTAL_VERTICES}"));
+        return Err(format!(
+            "too many vertices: above the limit {MAX_TOTAL_VERTICES}"
+        ));
     }
 
     expect_dims(&pos_acc, "POSITION", Dimensions::Vec3)?;
@@ -90,8 +106,12 @@ fn load_primitive(
     let indices: Vec<u32> = match prim.indices() {
         Some(acc) => {
             expect_dims(&acc, "indices", Dimensions::Scalar)?;
-            let idx =
-                read_u32(buffers, &acc, "indices", &[DataType::U8, DataType::U16, DataType::U32])?;
+            let idx = read_u32(
+                buffers,
+                &acc,
+                "indices",
+                &[DataType::U8, DataType::U16, DataType::U32],
+            )?;
             if let Some((k, &i)) = idx.iter().enumerate().find(|(_, &i)| i as usize >= n) {
                 return Err(format!("{label}: index {i} (at {k}) ≥ vertex count {n}"));
             }
@@ -99,12 +119,17 @@ fn load_primitive(
         }
         None => (0..n as u32).collect(),
     };
-    if indices.len() % 3 != 0 {
-        return Err(format!("{label}: index count {} is not a multiple of 3", indices.len()));
+    if !indices.len().is_multiple_of(3) {
+        return Err(format!(
+            "{label}: index count {} is not a multiple of 3",
+            indices.len()
+        ));
     }
     totals.indices = totals.indices.saturating_add(indices.len());
     if totals.indices > MAX_TOTAL_INDICES {
-        return Err(format!("too many indices: above the limit {MAX_TOTAL_INDICES}"));
+        return Err(format!(
+            "too many indices: above the limit {MAX_TOTAL_INDICES}"
+        ));
     }
 
     // Normals.
@@ -117,7 +142,11 @@ fn load_primitive(
                 if !finite3(v) {
                     return Err(format!("{label}: vertex {i} has a NaN/Inf normal"));
                 }
-                out.push(Vec3::new(v[0], v[1], v[2]).try_normalize().unwrap_or(Vec3::Y));
+                out.push(
+                    Vec3::new(v[0], v[1], v[2])
+                        .try_normalize()
+                        .unwrap_or(Vec3::Y),
+                );
             }
             out
         }
@@ -179,16 +208,16 @@ fn load_primitive(
             for i in 0..n {
                 let wv = [w[4 * i], w[4 * i + 1], w[4 * i + 2], w[4 * i + 3]];
                 if !finite3(&wv) || wv.iter().any(|&x| x < 0.0) {
-                    return Err(format!("{label}: vertex {i} has NaN/Inf or negative weights"));
+                    return Err(format!(
+                        "{label}: vertex {i} has NaN/Inf or negative weights"
+                    ));
                 }
                 let sum: f32 = wv.iter().sum();
                 if sum <= 0.0 {
                     return Err(format!("{label}: vertex {i} has zero-sum weights"));
                 }
                 let jv = [j[4 * i], j[4 * i + 1], j[4 * i + 2], j[4 * i + 3]];
-                for k in 0..4 {
-                    max_joint = max_joint.max(jv[k]);
-                }
+                max_joint = jv.iter().fold(max_joint, |m, &x| m.max(x));
                 // Both types are at most u16, so the casts are exact.
                 joints.push(jv.map(|x| x as u16));
                 weights.push(wv.map(|x| x / sum));
@@ -202,18 +231,26 @@ fn load_primitive(
         Some(acc) => {
             expect_dims(&acc, "_THICKNESS", Dimensions::Scalar)?;
             if acc.data_type() != DataType::F32 {
-                return Err(format!("accessor {} (_THICKNESS) must be float", acc.index()));
+                return Err(format!(
+                    "accessor {} (_THICKNESS) must be float",
+                    acc.index()
+                ));
             }
             let t = read_f32(buffers, &acc, "_THICKNESS")?;
             if let Some(i) = t.iter().position(|x| !x.is_finite() || *x < 0.0) {
-                return Err(format!("{label}: vertex {i} has a NaN/Inf or negative _THICKNESS"));
+                return Err(format!(
+                    "{label}: vertex {i} has a NaN/Inf or negative _THICKNESS"
+                ));
             }
             t
         }
         None => vec![DEFAULT_THICKNESS_M; n],
     };
 
-    let mut bounds = Aabb { min: Vec3::splat(f32::INFINITY), max: Vec3::splat(f32::NEG_INFINITY) };
+    let mut bounds = Aabb {
+        min: Vec3::splat(f32::INFINITY),
+        max: Vec3::splat(f32::NEG_INFINITY),
+    };
     let mut vertices = Vec::with_capacity(n);
     for i in 0..n {
         bounds.min = bounds.min.min(positions[i]);
@@ -229,8 +266,19 @@ fn load_primitive(
         });
     }
     if n == 0 {
-        bounds = Aabb { min: Vec3::ZERO, max: Vec3::ZERO };
+        bounds = Aabb {
+            min: Vec3::ZERO,
+            max: Vec3::ZERO,
+        };
     }
     let material = prim.material().index();
-    Ok((Primitive { vertices, indices, material, bounds }, max_joint))
+    Ok((
+        Primitive {
+            vertices,
+            indices,
+            material,
+            bounds,
+        },
+        max_joint,
+    ))
 }

@@ -23,12 +23,18 @@ impl Default for Bot {
 
 impl Bot {
     pub fn new(seed: u64) -> Self {
-        Self { seed, mistakes_per_mille: 25 }
+        Self {
+            seed,
+            mistakes_per_mille: 25,
+        }
     }
 
     /// A bot that never jumps late (for tests that want long runs).
     pub fn careful(seed: u64) -> Self {
-        Self { seed, mistakes_per_mille: 0 }
+        Self {
+            seed,
+            mistakes_per_mille: 0,
+        }
     }
 
     /// Ticks the bot waits on the main screen / game-over screen before starting.
@@ -37,7 +43,9 @@ impl Bot {
 
     /// A per-obstacle value in [0, 1) from the bot's seed.
     fn noise(&self, o: &Obstacle, salt: u64) -> f32 {
-        let h = splitmix64(self.seed ^ splitmix64(o.z.to_bits() as u64 ^ ((o.lane as i64 as u64) << 40) ^ salt));
+        let h = splitmix64(
+            self.seed ^ splitmix64(o.z.to_bits() as u64 ^ ((o.lane as i64 as u64) << 40) ^ salt),
+        );
         (h >> 40) as f32 / (1u64 << 24) as f32
     }
 
@@ -63,7 +71,11 @@ impl Bot {
         };
         // A lane can be entered (or crossed) unless something in it is about to arrive.
         let enterable = |lane: i8| {
-            game.obstacles().all(|o| o.lane != lane || o.z - p.z > v * 0.5 + 1.0 || o.z + Obstacle::HALF_DEPTH < p.z - 0.3)
+            game.obstacles().all(|o| {
+                o.lane != lane
+                    || o.z - p.z > v * 0.5 + 1.0
+                    || o.z + Obstacle::HALF_DEPTH < p.z - 0.3
+            })
         };
         let cur = game.lane();
         let here = tall(cur);
@@ -100,7 +112,11 @@ impl Bot {
             if let Some(o) = threat {
                 if o.kind == ObstacleKind::Low {
                     let late = self.noise(o, 1) * 1000.0 < self.mistakes_per_mille as f32;
-                    let lead = if late { 0.08 } else { 0.24 + 0.14 * self.noise(o, 2) };
+                    let lead = if late {
+                        0.08
+                    } else {
+                        0.24 + 0.14 * self.noise(o, 2)
+                    };
                     if (o.z - p.z) / v <= lead {
                         input.jump = true;
                     }

@@ -8,13 +8,17 @@
 //! transform, the camera target, the animation blend); the app renders it.
 
 mod bot;
+mod gpu;
 pub mod rng;
 mod screens;
+pub mod session;
 mod settings;
 pub mod track;
 
 pub use bot::Bot;
+pub use gpu::GameGpu;
 pub use screens::{GameUi, UiOutcome};
+pub use session::{FrameInfo, Key, Session, Viewport};
 pub use settings::Settings;
 pub use track::{Chunk, Obstacle, ObstacleKind, LANE_WIDTH};
 
@@ -78,9 +82,30 @@ pub struct Input {
 }
 
 impl Input {
-    pub const NONE: Input = Input { left: false, right: false, jump: false, tap: None, swipe: None };
+    pub const NONE: Input = Input {
+        left: false,
+        right: false,
+        jump: false,
+        tap: None,
+        swipe: None,
+    };
 
-    fn merge(&mut self, o: &Input) {
+    /// A touch gesture from press to release (physical pixels): a tap when it moved less
+    /// than `threshold` pixels, else a swipe in its dominant direction (screen y grows down).
+    pub fn from_gesture(down: (f32, f32), up: (f32, f32), threshold: f32) -> Input {
+        let (dx, dy) = (up.0 - down.0, up.1 - down.1);
+        let mut input = Input::NONE;
+        if dx * dx + dy * dy < threshold * threshold {
+            input.tap = Some(up);
+        } else if dx.abs() >= dy.abs() {
+            input.swipe = Some(if dx < 0.0 { Swipe::Left } else { Swipe::Right });
+        } else {
+            input.swipe = Some(if dy < 0.0 { Swipe::Up } else { Swipe::Down });
+        }
+        input
+    }
+
+    pub(crate) fn merge(&mut self, o: &Input) {
         self.left |= o.left;
         self.right |= o.right;
         self.jump |= o.jump;
@@ -121,7 +146,14 @@ struct Player {
 
 impl Player {
     fn start() -> Self {
-        Self { lane: 0, x: 0.0, y: 0.0, vy: 0.0, z: 0.0, speed: START_SPEED }
+        Self {
+            lane: 0,
+            x: 0.0,
+            y: 0.0,
+            vy: 0.0,
+            z: 0.0,
+            speed: START_SPEED,
+        }
     }
     fn grounded(&self) -> bool {
         self.y <= 0.0 && self.vy <= 0.0
@@ -185,7 +217,12 @@ impl Game {
             score: 0,
             best: 0,
             new_best: false,
-            anim: Anim { from: Clip::Idle, to: Clip::Idle, t: 1.0, times: [0.0; 3] },
+            anim: Anim {
+                from: Clip::Idle,
+                to: Clip::Idle,
+                t: 1.0,
+                times: [0.0; 3],
+            },
             pending: Input::NONE,
         };
         g.reset_world();
@@ -212,19 +249,27 @@ impl Game {
     /// Spawns chunks and obstacle rows ahead, recycles those behind.
     fn stream_world(&mut self) {
         let z = self.player.z;
-        self.chunks.retain(|_, c| c.z + CHUNK_LEN > z - 2.0 * CHUNK_LEN);
+        self.chunks
+            .retain(|_, c| c.z + CHUNK_LEN > z - 2.0 * CHUNK_LEN);
         self.obstacles.retain(|_, o| o.z > z - RECYCLE_BEHIND);
         while self.next_chunk_z < z + SPAWN_AHEAD + CHUNK_LEN && !self.chunks.is_full() {
             let chunk = Chunk::generate(self.next_chunk_z, &mut self.deco_rng);
             self.chunks.insert(chunk);
             self.next_chunk_z += CHUNK_LEN;
         }
-        while self.next_row_z < z + SPAWN_AHEAD && self.obstacles.capacity() - self.obstacles.len() >= 3 {
-            let difficulty = ((self.player.speed - START_SPEED) / (MAX_SPEED - START_SPEED)).clamp(0.0, 1.0);
+        while self.next_row_z < z + SPAWN_AHEAD
+            && self.obstacles.capacity() - self.obstacles.len() >= 3
+        {
+            let difficulty =
+                ((self.player.speed - START_SPEED) / (MAX_SPEED - START_SPEED)).clamp(0.0, 1.0);
             let row = row_pattern(&mut self.rng, difficulty);
             for (i, kind) in row.iter().enumerate() {
                 if let Some(kind) = *kind {
-                    self.obstacles.insert(Obstacle { kind, lane: i as i8 - 1, z: self.next_row_z });
+                    self.obstacles.insert(Obstacle {
+                        kind,
+                        lane: i as i8 - 1,
+                        z: self.next_row_z,
+                    });
                 }
             }
             // Enough room to react at the current speed, plus some randomness.
@@ -280,7 +325,11 @@ impl Game {
     /// Like [`Game::update`], with the input sampled before *every* tick from `input`
     /// (e.g. the [`Bot`]), so the result does not depend on how ticks fall into frames.
     pub fn update_with(&mut self, frame_dt: f32, mut input: impl FnMut(&Game) -> Input) -> u32 {
-        let dt = if frame_dt.is_finite() { frame_dt.clamp(0.0, 0.25) } else { 0.0 };
+        let dt = if frame_dt.is_finite() {
+            frame_dt.clamp(0.0, 0.25)
+        } else {
+            0.0
+        };
         self.accumulator += dt as f64;
         let step = TICK_DT as f64;
         let mut n = 0;
@@ -524,7 +573,10 @@ impl Game {
             }
         }
         for o in self.obstacles.values() {
-            out.push(PropInstance { kind: PropKind::Obstacle, transform: o.transform() });
+            out.push(PropInstance {
+                kind: PropKind::Obstacle,
+                transform: o.transform(),
+            });
         }
     }
 
@@ -545,7 +597,16 @@ impl Game {
         put(self.screen_ticks as u64);
         put(self.runs as u64);
         put(p.lane as i64 as u64);
-        for v in [p.x, p.y, p.vy, p.z, p.speed, self.next_row_z, self.next_chunk_z, self.anim.t] {
+        for v in [
+            p.x,
+            p.y,
+            p.vy,
+            p.z,
+            p.speed,
+            self.next_row_z,
+            self.next_chunk_z,
+            self.anim.t,
+        ] {
             put(v.to_bits() as u64);
         }
         put(self.score as u64);
@@ -569,7 +630,13 @@ impl Game {
     /// Test hook: places an obstacle (returns false when the pool is full).
     #[doc(hidden)]
     pub fn debug_place_obstacle(&mut self, kind: ObstacleKind, lane: i8, z: f32) -> bool {
-        self.obstacles.insert(Obstacle { kind, lane: lane.clamp(-1, 1), z }).is_some()
+        self.obstacles
+            .insert(Obstacle {
+                kind,
+                lane: lane.clamp(-1, 1),
+                z,
+            })
+            .is_some()
     }
 
     /// Test hook: removes every obstacle and stops spawning new ones before `z`.

@@ -16,7 +16,10 @@ pub fn splitmix64(mut x: u64) -> u64 {
 
 impl Pcg32 {
     pub fn new(seed: u64, stream: u64) -> Self {
-        let mut r = Self { state: 0, inc: (splitmix64(stream) << 1) | 1 };
+        let mut r = Self {
+            state: 0,
+            inc: (splitmix64(stream) << 1) | 1,
+        };
         r.next_u32();
         r.state = r.state.wrapping_add(splitmix64(seed));
         r.next_u32();
@@ -25,7 +28,9 @@ impl Pcg32 {
 
     pub fn next_u32(&mut self) -> u32 {
         let old = self.state;
-        self.state = old.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(self.inc);
+        self.state = old
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(self.inc);
         let xorshifted = (((old >> 18) ^ old) >> 27) as u32;
         let rot = (old >> 59) as u32;
         xorshifted.rotate_right(rot)

@@ -36,7 +36,11 @@ impl Default for GameUi {
 
 impl GameUi {
     pub fn new() -> Self {
-        Self { option: String::with_capacity(64), line1: String::with_capacity(64), line2: String::with_capacity(64) }
+        Self {
+            option: String::with_capacity(64),
+            line1: String::with_capacity(64),
+            line2: String::with_capacity(64),
+        }
     }
 
     /// Declares this frame's widgets for the game's screen (between `ui.begin` and `ui.end`).

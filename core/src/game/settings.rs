@@ -14,7 +14,10 @@ pub struct Settings {
 
 impl Default for Settings {
     fn default() -> Self {
-        Self { shading: ShadingModel::ALL[0].name().to_string(), best: 0 }
+        Self {
+            shading: ShadingModel::ALL[0].name().to_string(),
+            best: 0,
+        }
     }
 }
 
@@ -30,7 +33,10 @@ impl Settings {
     }
 
     pub fn to_text(&self) -> String {
-        format!("# dermis settings\nshading={}\nbest={}\n", self.shading, self.best)
+        format!(
+            "# dermis settings\nshading={}\nbest={}\n",
+            self.shading, self.best
+        )
     }
 
     /// Parses `to_text` output. Never fails: unknown keys, malformed lines, unknown model
@@ -42,7 +48,9 @@ impl Settings {
             if line.starts_with('#') {
                 continue;
             }
-            let Some((key, value)) = line.split_once('=') else { continue };
+            let Some((key, value)) = line.split_once('=') else {
+                continue;
+            };
             match key.trim() {
                 "shading" => {
                     if let Some(m) = ShadingModel::from_name(value.trim()) {

@@ -37,20 +37,31 @@ impl Chunk {
 
     fn push(&mut self, kind: PropKind, pos: Vec3, yaw: f32) {
         if (self.count as usize) < MAX_CHUNK_PROPS {
-            self.props[self.count as usize] = (kind, Mat4::from_rotation_translation(Quat::from_rotation_y(yaw), pos));
+            self.props[self.count as usize] = (
+                kind,
+                Mat4::from_rotation_translation(Quat::from_rotation_y(yaw), pos),
+            );
             self.count += 1;
         }
     }
 
     /// A chunk starting at `z`, furnished from `rng`.
     pub fn generate(z: f32, rng: &mut Pcg32) -> Self {
-        let mut c = Chunk { z, count: 0, props: [(PropKind::FloorTile, Mat4::IDENTITY); MAX_CHUNK_PROPS] };
+        let mut c = Chunk {
+            z,
+            count: 0,
+            props: [(PropKind::FloorTile, Mat4::IDENTITY); MAX_CHUNK_PROPS],
+        };
         for row in [2.0, 6.0] {
             for x in [-4.0, 0.0, 4.0] {
                 c.push(PropKind::FloorTile, Vec3::new(x, 0.0, z + row), 0.0);
             }
             for side in [-1.0f32, 1.0] {
-                c.push(PropKind::Wall, Vec3::new(side * WALL_X, 0.0, z + row), std::f32::consts::FRAC_PI_2);
+                c.push(
+                    PropKind::Wall,
+                    Vec3::new(side * WALL_X, 0.0, z + row),
+                    std::f32::consts::FRAC_PI_2,
+                );
             }
         }
         // Furniture beside the track: a table with chairs on either side, now and then.
@@ -60,12 +71,21 @@ impl Chunk {
             }
             let tz = z + rng.range(2.0, 6.0);
             let tx = side * rng.range(3.6, 4.4);
-            c.push(PropKind::Table, Vec3::new(tx, 0.0, tz), std::f32::consts::FRAC_PI_2 + rng.range(-0.15, 0.15));
+            c.push(
+                PropKind::Table,
+                Vec3::new(tx, 0.0, tz),
+                std::f32::consts::FRAC_PI_2 + rng.range(-0.15, 0.15),
+            );
             for dz in [-1.0f32, 1.0] {
                 if rng.chance(0.7) {
                     // Chairs face the table (+z is a chair's front).
-                    let yaw = if dz < 0.0 { 0.0 } else { std::f32::consts::PI } + rng.range(-0.3, 0.3);
-                    c.push(PropKind::Chair, Vec3::new(tx + rng.range(-0.2, 0.2), 0.0, tz + dz * 0.75), yaw);
+                    let yaw =
+                        if dz < 0.0 { 0.0 } else { std::f32::consts::PI } + rng.range(-0.3, 0.3);
+                    c.push(
+                        PropKind::Chair,
+                        Vec3::new(tx + rng.range(-0.2, 0.2), 0.0, tz + dz * 0.75),
+                        yaw,
+                    );
                 }
             }
         }
@@ -114,7 +134,11 @@ impl Obstacle {
     /// The 1 m crate prop scaled to the obstacle's box.
     pub fn transform(&self) -> Mat4 {
         Mat4::from_scale_rotation_translation(
-            Vec3::new(2.0 * Self::HALF_WIDTH, self.height(), 2.0 * Self::HALF_DEPTH),
+            Vec3::new(
+                2.0 * Self::HALF_WIDTH,
+                self.height(),
+                2.0 * Self::HALF_DEPTH,
+            ),
             Quat::IDENTITY,
             Vec3::new(self.x(), 0.0, self.z),
         )
@@ -129,10 +153,14 @@ pub fn row_pattern(rng: &mut Pcg32, difficulty: f32) -> [Option<ObstacleKind>; 3
         // A full row of low crates: everyone jumps.
         return [Some(ObstacleKind::Low); 3];
     }
-    let blocked = if rng.chance(0.35 + 0.3 * difficulty) { 2 } else { 1 };
+    let blocked = if rng.chance(0.35 + 0.3 * difficulty) {
+        2
+    } else {
+        1
+    };
     let free = rng.below(3) as usize;
     let mut placed = 0;
-    for i in 0..3 {
+    for (i, slot) in row.iter_mut().enumerate() {
         if i == free || placed == blocked {
             continue;
         }
@@ -140,12 +168,20 @@ pub fn row_pattern(rng: &mut Pcg32, difficulty: f32) -> [Option<ObstacleKind>; 3
             continue; // leave this one free and block the next
         }
         let tall = rng.chance(0.45);
-        row[i] = Some(if tall { ObstacleKind::Tall } else { ObstacleKind::Low });
+        *slot = Some(if tall {
+            ObstacleKind::Tall
+        } else {
+            ObstacleKind::Low
+        });
         placed += 1;
     }
     if placed == 0 {
         let i = (free + 1) % 3;
-        row[i] = Some(if rng.chance(0.45) { ObstacleKind::Tall } else { ObstacleKind::Low });
+        row[i] = Some(if rng.chance(0.45) {
+            ObstacleKind::Tall
+        } else {
+            ObstacleKind::Low
+        });
     }
     row
 }

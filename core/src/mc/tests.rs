@@ -392,39 +392,3 @@ fn mc_vs_dipole_total_reflectance_skin1() {
         );
     }
 }
-
-/// Prints the MC-vs-dipole table (run with `-- --ignored --nocapture`; slow in debug).
-#[test]
-#[ignore]
-fn print_reference_table() {
-    let photons = 100_000;
-    for (name, sa, ss) in [
-        ("skin1", SKIN1_SA, SKIN1_SS),
-        ("white-coat", COAT_SA, COAT_SS),
-    ] {
-        for eta in [1.0936, 1.3, 1.4] {
-            for c in 0..3 {
-                let m = Medium::new(sa[c], ss[c], 0.0, eta);
-                let r = simulate(
-                    &m,
-                    Geometry::SemiInfinite,
-                    Source::Normal,
-                    &Detectors::default(),
-                    photons,
-                    1,
-                    2,
-                );
-                let mc = r.reflectance_per_entered();
-                let dip = dipole_check::total_rd(sa[c], ss[c], eta);
-                println!(
-                    "{name} η={eta} ch{c}: MC R_d {:.4} ± {:.4} (per incident {:.4}), dipole {:.4} ({:+.1} %)",
-                    mc.mean,
-                    mc.std_err,
-                    r.reflectance.mean,
-                    dip,
-                    100.0 * (dip / mc.mean - 1.0)
-                );
-            }
-        }
-    }
-}

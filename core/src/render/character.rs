@@ -49,11 +49,15 @@ impl CharacterGpu {
             .textures
             .iter()
             .enumerate()
-            .map(|(i, t)| texture::upload(device, queue, t, &format!("{} texture {i}", model.source)))
+            .map(|(i, t)| {
+                texture::upload(device, queue, t, &format!("{} texture {i}", model.source))
+            })
             .collect();
         let white = texture::solid(device, queue, [255, 255, 255, 255], true);
         for node in &model.nodes {
-            let (Some(mesh), Some(skin)) = (node.mesh, node.skin) else { continue };
+            let (Some(mesh), Some(skin)) = (node.mesh, node.skin) else {
+                continue;
+            };
             let slot = match skins.iter().position(|s| s.skin == skin) {
                 Some(i) => i,
                 None => {
@@ -80,17 +84,32 @@ impl CharacterGpu {
                     label: Some("character part"),
                     layout: &layouts.skinned,
                     entries: &[
-                        wgpu::BindGroupEntry { binding: 0, resource: skins[slot].buffer.as_entire_binding() },
-                        wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::TextureView(view) },
-                        wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::Sampler(sampler) },
+                        wgpu::BindGroupEntry {
+                            binding: 0,
+                            resource: skins[slot].buffer.as_entire_binding(),
+                        },
+                        wgpu::BindGroupEntry {
+                            binding: 1,
+                            resource: wgpu::BindingResource::TextureView(view),
+                        },
+                        wgpu::BindGroupEntry {
+                            binding: 2,
+                            resource: wgpu::BindingResource::Sampler(sampler),
+                        },
                     ],
                 });
                 triangles += prim.indices.len() as u32 / 3;
-                parts.push(Part { mesh: GpuMesh::new(device, prim, "character"), bind_group });
+                parts.push(Part {
+                    mesh: GpuMesh::new(device, prim, "character"),
+                    bind_group,
+                });
             }
         }
         if parts.is_empty() {
-            return Err(format!("{}: no skinned mesh to render as the character", model.source));
+            return Err(format!(
+                "{}: no skinned mesh to render as the character",
+                model.source
+            ));
         }
         let param_buffer = |label| {
             device.create_buffer(&wgpu::BufferDescriptor {
@@ -104,7 +123,10 @@ impl CharacterGpu {
             device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("shading model params"),
                 layout: &layouts.model,
-                entries: &[wgpu::BindGroupEntry { binding: 0, resource: buffer.as_entire_binding() }],
+                entries: &[wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: buffer.as_entire_binding(),
+                }],
             })
         };
         let params = ShadingModel::ALL
@@ -117,7 +139,13 @@ impl CharacterGpu {
             .collect();
         let unlit_buffer = param_buffer("unlit");
         let unlit_params = bind(&unlit_buffer);
-        Ok(Self { parts, skins, params, unlit_params, triangles })
+        Ok(Self {
+            parts,
+            skins,
+            params,
+            unlit_params,
+            triangles,
+        })
     }
 
     /// Recomputes every model's constants for `material` (when the material changes).
@@ -140,7 +168,14 @@ impl CharacterGpu {
 
     pub(super) fn params_group(&self, model: Option<ShadingModel>) -> &wgpu::BindGroup {
         match model {
-            Some(m) => &self.params.iter().find(|(p, _, _)| *p == m).expect("all models have params").2,
+            Some(m) => {
+                &self
+                    .params
+                    .iter()
+                    .find(|(p, _, _)| *p == m)
+                    .expect("all models have params")
+                    .2
+            }
             None => &self.unlit_params,
         }
     }

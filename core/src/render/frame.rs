@@ -36,14 +36,26 @@ pub struct FrameUniform {
 }
 
 impl FrameUniform {
-    pub fn new(view_proj: Mat4, camera_pos: Vec3, light: &Light, exposure: f32, manual_srgb: bool, raw: bool) -> Self {
+    pub fn new(
+        view_proj: Mat4,
+        camera_pos: Vec3,
+        light: &Light,
+        exposure: f32,
+        manual_srgb: bool,
+        raw: bool,
+    ) -> Self {
         Self {
             view_proj: view_proj.to_cols_array_2d(),
             camera_pos: camera_pos.extend(1.0).to_array(),
             light_pos: light.position.extend(light.intensity).to_array(),
             light_color: light.color.extend(1.0).to_array(),
             ambient: light.ambient.extend(0.0).to_array(),
-            output: [exposure, f32::from(u8::from(manual_srgb)), f32::from(u8::from(raw)), 0.0],
+            output: [
+                exposure,
+                f32::from(u8::from(manual_srgb)),
+                f32::from(u8::from(raw)),
+                0.0,
+            ],
         }
     }
 }

@@ -65,7 +65,12 @@ impl Gpu {
             .await
             .map_err(|e| GpuError::NoAdapter(e.to_string()))?;
         let info = adapter.get_info();
-        log::info!("adapter: {} ({:?}, {})", info.name, info.backend, info.driver_info);
+        log::info!(
+            "adapter: {} ({:?}, {})",
+            info.name,
+            info.backend,
+            info.driver_info
+        );
         let features = adapter.features() & OPTIONAL_FEATURES;
         // Whatever the adapter offers; the renderer itself stays inside GLES3 limits
         // (16 KiB uniform blocks, no storage buffers in the render path).
@@ -82,7 +87,13 @@ impl Gpu {
             .await
             .map_err(|e| GpuError::Device(e.to_string()))?;
         let timestamps = features.contains(wgpu::Features::TIMESTAMP_QUERY);
-        Ok(Self { instance, adapter, device, queue, timestamps })
+        Ok(Self {
+            instance,
+            adapter,
+            device,
+            queue,
+            timestamps,
+        })
     }
 
     /// "name (backend)" of the adapter.

@@ -48,13 +48,30 @@ impl Layouts {
     pub fn new(device: &wgpu::Device) -> Self {
         let vf = wgpu::ShaderStages::VERTEX_FRAGMENT;
         let make = |label, entries: &[wgpu::BindGroupLayoutEntry]| {
-            device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some(label), entries })
+            device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                label: Some(label),
+                entries,
+            })
         };
         Self {
             frame: make("frame", &[uniform(0, vf)]),
             model: make("shading model", &[uniform(0, wgpu::ShaderStages::FRAGMENT)]),
-            skinned: make("skinned object", &[uniform(0, wgpu::ShaderStages::VERTEX), texture(1), sampler(2)]),
-            prop_material: make("prop material", &[texture(0), sampler(1), uniform(2, wgpu::ShaderStages::FRAGMENT)]),
+            skinned: make(
+                "skinned object",
+                &[
+                    uniform(0, wgpu::ShaderStages::VERTEX),
+                    texture(1),
+                    sampler(2),
+                ],
+            ),
+            prop_material: make(
+                "prop material",
+                &[
+                    texture(0),
+                    sampler(1),
+                    uniform(2, wgpu::ShaderStages::FRAGMENT),
+                ],
+            ),
         }
     }
 }

@@ -21,7 +21,11 @@ impl GpuMesh {
             contents: bytemuck::cast_slice(&primitive.indices),
             usage: wgpu::BufferUsages::INDEX,
         });
-        Self { vertices, indices, index_count: primitive.indices.len() as u32 }
+        Self {
+            vertices,
+            indices,
+            index_count: primitive.indices.len() as u32,
+        }
     }
 }
 

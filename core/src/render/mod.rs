@@ -4,6 +4,7 @@
 //! second pass is needed.
 
 mod character;
+mod counters;
 mod frame;
 mod gpu;
 mod layouts;
@@ -18,6 +19,7 @@ mod timer;
 pub mod ui;
 
 pub use character::CharacterGpu;
+pub use counters::LiveObjects;
 pub use frame::{FrameUniform, Light};
 pub use gpu::{Gpu, GpuError};
 pub use offscreen::{f16_to_f32, Offscreen, RgbaImage, OFFSCREEN_FORMAT};

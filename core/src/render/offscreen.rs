@@ -37,7 +37,11 @@ impl Offscreen {
         let bytes_per_pixel = format.block_copy_size(None).unwrap_or(4);
         let texture = device.create_texture(&wgpu::TextureDescriptor {
             label: Some("offscreen"),
-            size: wgpu::Extent3d { width: targets.width, height: targets.height, depth_or_array_layers: 1 },
+            size: wgpu::Extent3d {
+                width: targets.width,
+                height: targets.height,
+                depth_or_array_layers: 1,
+            },
             mip_level_count: 1,
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,
@@ -46,14 +50,23 @@ impl Offscreen {
             view_formats: &[],
         });
         let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
-        let padded_row = (targets.width * bytes_per_pixel).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+        let padded_row = (targets.width * bytes_per_pixel)
+            .div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT)
+            * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
         let readback = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("offscreen readback"),
             size: (padded_row * targets.height) as u64,
             usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        Self { targets, texture, view, readback, padded_row, bytes_per_pixel }
+        Self {
+            targets,
+            texture,
+            view,
+            readback,
+            padded_row,
+            bytes_per_pixel,
+        }
     }
 
     /// Records the copy of the rendered image into the readback buffer.
@@ -68,14 +81,22 @@ impl Offscreen {
                     rows_per_image: Some(self.targets.height),
                 },
             },
-            wgpu::Extent3d { width: self.targets.width, height: self.targets.height, depth_or_array_layers: 1 },
+            wgpu::Extent3d {
+                width: self.targets.width,
+                height: self.targets.height,
+                depth_or_array_layers: 1,
+            },
         );
     }
 
     /// Waits for the GPU and returns the image copied by [`Self::copy_out`] (8-bit formats).
     pub fn read(&self, gpu: &Gpu) -> RgbaImage {
         let (width, height) = (self.targets.width, self.targets.height);
-        RgbaImage { width, height, pixels: self.read_bytes(gpu) }
+        RgbaImage {
+            width,
+            height,
+            pixels: self.read_bytes(gpu),
+        }
     }
 
     /// Waits for the GPU and returns the tightly packed texel bytes.
@@ -87,7 +108,9 @@ impl Offscreen {
         let row_bytes = (w * self.bytes_per_pixel) as usize;
         let mut bytes = Vec::with_capacity(row_bytes * h as usize);
         {
-            let data = slice.get_mapped_range().expect("readback buffer was mapped above");
+            let data = slice
+                .get_mapped_range()
+                .expect("readback buffer was mapped above");
             for row in 0..h {
                 let start = (row * self.padded_row) as usize;
                 bytes.extend_from_slice(&data[start..start + row_bytes]);
@@ -101,7 +124,9 @@ impl Offscreen {
     pub fn read_f16(&self, gpu: &Gpu) -> Vec<[f32; 4]> {
         self.read_bytes(gpu)
             .chunks_exact(8)
-            .map(|t| std::array::from_fn(|c| f16_to_f32(u16::from_le_bytes([t[2 * c], t[2 * c + 1]]))))
+            .map(|t| {
+                std::array::from_fn(|c| f16_to_f32(u16::from_le_bytes([t[2 * c], t[2 * c + 1]])))
+            })
             .collect()
     }
 }

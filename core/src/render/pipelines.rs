@@ -20,7 +20,12 @@ pub struct CharacterPipelines {
 
 impl CharacterPipelines {
     pub fn get(&self, model: ShadingModel) -> &wgpu::RenderPipeline {
-        &self.models.iter().find(|(m, _)| *m == model).expect("every registry model has a pipeline").1
+        &self
+            .models
+            .iter()
+            .find(|(m, _)| *m == model)
+            .expect("every registry model has a pipeline")
+            .1
     }
 }
 
@@ -33,7 +38,11 @@ impl Pipelines {
     pub fn new(device: &wgpu::Device, layouts: &Layouts, format: wgpu::TextureFormat) -> Self {
         let character_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("character"),
-            bind_group_layouts: &[Some(&layouts.frame), Some(&layouts.model), Some(&layouts.skinned)],
+            bind_group_layouts: &[
+                Some(&layouts.frame),
+                Some(&layouts.model),
+                Some(&layouts.skinned),
+            ],
             immediate_size: 0,
         });
         let prop_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
@@ -46,22 +55,42 @@ impl Pipelines {
                 label: Some(label),
                 source: wgpu::ShaderSource::Wgsl(source.into()),
             });
-            pipeline(device, &character_layout, &module, format, &[vertex_layout()], label)
+            pipeline(
+                device,
+                &character_layout,
+                &module,
+                format,
+                &[vertex_layout()],
+                label,
+            )
         };
         let models = ShadingModel::ALL
             .iter()
             .map(|&m| (m, character(m.name(), build_shader_source(m))))
             .collect();
-        let unlit_src = compose("character", &ShaderDefs::new().alias("shading_model", "unlit"))
-            .expect("built-in shaders compose");
+        let unlit_src = compose(
+            "character",
+            &ShaderDefs::new().alias("shading_model", "unlit"),
+        )
+        .expect("built-in shaders compose");
         let unlit = character("unlit", unlit_src);
         let prop_src = compose("prop", &ShaderDefs::new()).expect("built-in shaders compose");
         let prop_module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("prop"),
             source: wgpu::ShaderSource::Wgsl(prop_src.into()),
         });
-        let prop = pipeline(device, &prop_layout, &prop_module, format, &[vertex_layout(), instance_layout()], "prop");
-        Self { character: CharacterPipelines { models, unlit }, prop }
+        let prop = pipeline(
+            device,
+            &prop_layout,
+            &prop_module,
+            format,
+            &[vertex_layout(), instance_layout()],
+            "prop",
+        );
+        Self {
+            character: CharacterPipelines { models, unlit },
+            prop,
+        }
     }
 }
 
@@ -73,7 +102,8 @@ fn pipeline(
     buffers: &[wgpu::VertexBufferLayout<'_>],
     label: &str,
 ) -> wgpu::RenderPipeline {
-    let buffers: Vec<Option<wgpu::VertexBufferLayout<'_>>> = buffers.iter().cloned().map(Some).collect();
+    let buffers: Vec<Option<wgpu::VertexBufferLayout<'_>>> =
+        buffers.iter().cloned().map(Some).collect();
     device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
         label: Some(label),
         layout: Some(layout),
@@ -96,7 +126,10 @@ fn pipeline(
             stencil: Default::default(),
             bias: Default::default(),
         }),
-        multisample: wgpu::MultisampleState { count: MSAA_SAMPLES, ..Default::default() },
+        multisample: wgpu::MultisampleState {
+            count: MSAA_SAMPLES,
+            ..Default::default()
+        },
         fragment: Some(wgpu::FragmentState {
             module,
             entry_point: Some("fs_main"),

@@ -20,7 +20,13 @@ pub enum PropKind {
 }
 
 impl PropKind {
-    pub const ALL: [PropKind; 5] = [Self::FloorTile, Self::Wall, Self::Table, Self::Chair, Self::Obstacle];
+    pub const ALL: [PropKind; 5] = [
+        Self::FloorTile,
+        Self::Wall,
+        Self::Table,
+        Self::Chair,
+        Self::Obstacle,
+    ];
 
     /// File name under `assets/props/`.
     pub fn file(self) -> &'static str {
@@ -95,13 +101,25 @@ impl PropGpu {
                     label: Some("prop material"),
                     layout: &layouts.prop_material,
                     entries: &[
-                        wgpu::BindGroupEntry { binding: 0, resource: wgpu::BindingResource::TextureView(view) },
-                        wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::Sampler(sampler) },
-                        wgpu::BindGroupEntry { binding: 2, resource: factor_buffer.as_entire_binding() },
+                        wgpu::BindGroupEntry {
+                            binding: 0,
+                            resource: wgpu::BindingResource::TextureView(view),
+                        },
+                        wgpu::BindGroupEntry {
+                            binding: 1,
+                            resource: wgpu::BindingResource::Sampler(sampler),
+                        },
+                        wgpu::BindGroupEntry {
+                            binding: 2,
+                            resource: factor_buffer.as_entire_binding(),
+                        },
                     ],
                 });
                 triangles += baked.indices.len() as u32 / 3;
-                parts.push(Part { mesh: GpuMesh::new(device, &baked, kind.file()), material });
+                parts.push(Part {
+                    mesh: GpuMesh::new(device, &baked, kind.file()),
+                    material,
+                });
             }
         }
         let instances = device.create_buffer(&wgpu::BufferDescriptor {
@@ -110,7 +128,14 @@ impl PropGpu {
             usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        Self { kind, parts, instances, capacity: MAX_INSTANCES, count: 0, triangles }
+        Self {
+            kind,
+            parts,
+            instances,
+            capacity: MAX_INSTANCES,
+            count: 0,
+            triangles,
+        }
     }
 
     /// Uploads this kind's instance matrices (at most `MAX_INSTANCES`).
@@ -154,7 +179,9 @@ fn bake(prim: &Primitive, world: Mat4) -> Primitive {
     let mut out = prim.clone();
     for v in &mut out.vertices {
         v.position = world.transform_point3(Vec3::from(v.position)).to_array();
-        v.normal = (normal_m * Vec3::from(v.normal)).normalize_or_zero().to_array();
+        v.normal = (normal_m * Vec3::from(v.normal))
+            .normalize_or_zero()
+            .to_array();
         let t = Mat3::from_mat4(world) * Vec3::from_slice(&v.tangent[..3]);
         v.tangent = t.normalize_or_zero().extend(v.tangent[3]).to_array();
     }

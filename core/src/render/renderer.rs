@@ -9,6 +9,7 @@ use super::pipelines::Pipelines;
 use super::props::{PropGpu, PropInstance, PropKind, MAX_INSTANCES};
 use super::targets::Targets;
 use super::timer::PassTimer;
+use super::ui::UiRenderer;
 use super::Gpu;
 use crate::anim::Pose;
 use crate::asset::Model;
@@ -77,7 +78,10 @@ impl Renderer {
         let frame_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("frame"),
             layout: &layouts.frame,
-            entries: &[wgpu::BindGroupEntry { binding: 0, resource: frame_buffer.as_entire_binding() }],
+            entries: &[wgpu::BindGroupEntry {
+                binding: 0,
+                resource: frame_buffer.as_entire_binding(),
+            }],
         });
         Self {
             layouts,
@@ -89,13 +93,24 @@ impl Renderer {
             props: Vec::new(),
             scratch: Vec::with_capacity(MAX_INSTANCES as usize),
             format,
-            clear: wgpu::Color { r: 0.015, g: 0.017, b: 0.022, a: 1.0 },
+            clear: wgpu::Color {
+                r: 0.015,
+                g: 0.017,
+                b: 0.022,
+                a: 1.0,
+            },
         }
     }
 
     /// Uploads the character (replacing any previous one) with `material`'s constants.
-    pub fn load_character(&mut self, gpu: &Gpu, model: &Model, material: &Material) -> Result<(), String> {
-        let character = CharacterGpu::new(&gpu.device, &gpu.queue, &self.layouts, &self.sampler, model)?;
+    pub fn load_character(
+        &mut self,
+        gpu: &Gpu,
+        model: &Model,
+        material: &Material,
+    ) -> Result<(), String> {
+        let character =
+            CharacterGpu::new(&gpu.device, &gpu.queue, &self.layouts, &self.sampler, model)?;
         character.set_material(&gpu.queue, material);
         self.character = Some(character);
         Ok(())
@@ -104,7 +119,14 @@ impl Renderer {
     /// Uploads a prop model for `kind`.
     pub fn load_prop(&mut self, gpu: &Gpu, kind: PropKind, model: &Model) {
         self.props.retain(|p| p.kind != kind);
-        self.props.push(PropGpu::new(&gpu.device, &gpu.queue, &self.layouts, &self.sampler, kind, model));
+        self.props.push(PropGpu::new(
+            &gpu.device,
+            &gpu.queue,
+            &self.layouts,
+            &self.sampler,
+            kind,
+            model,
+        ));
     }
 
     pub fn set_material(&self, queue: &wgpu::Queue, material: &Material) {
@@ -118,14 +140,23 @@ impl Renderer {
         for prop in &mut self.props {
             self.scratch.clear();
             self.scratch.extend(
-                instances.iter().filter(|i| i.kind == prop.kind).map(|i| i.transform.to_cols_array_2d()),
+                instances
+                    .iter()
+                    .filter(|i| i.kind == prop.kind)
+                    .map(|i| i.transform.to_cols_array_2d()),
             );
             prop.set_instances(queue, &self.scratch);
         }
     }
 
     /// Uploads the character's joint palettes for `pose`, placed at `world`.
-    pub fn update_character(&mut self, queue: &wgpu::Queue, model: &Model, pose: &Pose, world: Mat4) {
+    pub fn update_character(
+        &mut self,
+        queue: &wgpu::Queue,
+        model: &Model,
+        pose: &Pose,
+        world: Mat4,
+    ) {
         if let Some(c) = &mut self.character {
             c.update_pose(queue, model, pose, world);
         }
@@ -133,9 +164,19 @@ impl Renderer {
 
     /// Writes the frame uniform.
     pub fn prepare(&self, queue: &wgpu::Queue, view: &FrameView) {
-        let raw = matches!(self.format, wgpu::TextureFormat::Rgba16Float | wgpu::TextureFormat::Rgba32Float);
+        let raw = matches!(
+            self.format,
+            wgpu::TextureFormat::Rgba16Float | wgpu::TextureFormat::Rgba32Float
+        );
         let manual_srgb = !raw && !self.format.is_srgb();
-        let u = FrameUniform::new(view.view_proj, view.camera_pos, &view.light, view.exposure, manual_srgb, raw);
+        let u = FrameUniform::new(
+            view.view_proj,
+            view.camera_pos,
+            &view.light,
+            view.exposure,
+            manual_srgb,
+            raw,
+        );
         queue.write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(&u));
     }
 
@@ -150,6 +191,7 @@ impl Renderer {
         targets: &Targets,
         output: &wgpu::TextureView,
         draw: DrawSet,
+        ui: Option<&UiRenderer>,
         timer: Option<&PassTimer>,
     ) -> RenderStats {
         let mut stats = RenderStats::default();
@@ -159,11 +201,17 @@ impl Renderer {
                 view: &targets.msaa,
                 depth_slice: None,
                 resolve_target: Some(output),
-                ops: wgpu::Operations { load: wgpu::LoadOp::Clear(self.clear), store: wgpu::StoreOp::Discard },
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(self.clear),
+                    store: wgpu::StoreOp::Discard,
+                },
             })],
             depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
                 view: &targets.depth,
-                depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(1.0), store: wgpu::StoreOp::Discard }),
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(1.0),
+                    store: wgpu::StoreOp::Discard,
+                }),
                 stencil_ops: None,
             }),
             timestamp_writes: timer.map(|t| t.writes()),
@@ -189,6 +237,10 @@ impl Renderer {
                 stats.draw_calls += prop.draw(&mut pass);
                 stats.triangles += prop.triangles * prop.count;
             }
+        }
+        // The UI goes last, inside the same pass: one draw call.
+        if let Some(ui) = ui {
+            stats.draw_calls += ui.draw(&mut pass);
         }
         stats
     }

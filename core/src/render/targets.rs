@@ -13,13 +13,22 @@ pub struct Targets {
 }
 
 impl Targets {
-    pub fn new(device: &wgpu::Device, format: wgpu::TextureFormat, width: u32, height: u32) -> Self {
+    pub fn new(
+        device: &wgpu::Device,
+        format: wgpu::TextureFormat,
+        width: u32,
+        height: u32,
+    ) -> Self {
         let (width, height) = (width.max(1), height.max(1));
         let make = |label, format, usage| {
             device
                 .create_texture(&wgpu::TextureDescriptor {
                     label: Some(label),
-                    size: wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
+                    size: wgpu::Extent3d {
+                        width,
+                        height,
+                        depth_or_array_layers: 1,
+                    },
                     mip_level_count: 1,
                     sample_count: MSAA_SAMPLES,
                     dimension: wgpu::TextureDimension::D2,
@@ -40,7 +49,13 @@ impl Targets {
     }
 
     /// Recreates the targets if the size or format changed; returns whether it did.
-    pub fn ensure(&mut self, device: &wgpu::Device, format: wgpu::TextureFormat, width: u32, height: u32) -> bool {
+    pub fn ensure(
+        &mut self,
+        device: &wgpu::Device,
+        format: wgpu::TextureFormat,
+        width: u32,
+        height: u32,
+    ) -> bool {
         if self.width == width.max(1) && self.height == height.max(1) && self.format == format {
             return false;
         }

@@ -3,12 +3,25 @@
 use crate::asset::TextureImage;
 
 /// Uploads `image` with all mip levels and returns its view.
-pub fn upload(device: &wgpu::Device, queue: &wgpu::Queue, image: &TextureImage, label: &str) -> wgpu::TextureView {
+pub fn upload(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    image: &TextureImage,
+    label: &str,
+) -> wgpu::TextureView {
     let levels = mip_count(image.width, image.height);
-    let format = if image.srgb { wgpu::TextureFormat::Rgba8UnormSrgb } else { wgpu::TextureFormat::Rgba8Unorm };
+    let format = if image.srgb {
+        wgpu::TextureFormat::Rgba8UnormSrgb
+    } else {
+        wgpu::TextureFormat::Rgba8Unorm
+    };
     let texture = device.create_texture(&wgpu::TextureDescriptor {
         label: Some(label),
-        size: wgpu::Extent3d { width: image.width, height: image.height, depth_or_array_layers: 1 },
+        size: wgpu::Extent3d {
+            width: image.width,
+            height: image.height,
+            depth_or_array_layers: 1,
+        },
         mip_level_count: levels,
         sample_count: 1,
         dimension: wgpu::TextureDimension::D2,
@@ -27,8 +40,16 @@ pub fn upload(device: &wgpu::Device, queue: &wgpu::Queue, image: &TextureImage, 
                 aspect: wgpu::TextureAspect::All,
             },
             &level,
-            wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(4 * w), rows_per_image: Some(h) },
-            wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
+            wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(4 * w),
+                rows_per_image: Some(h),
+            },
+            wgpu::Extent3d {
+                width: w,
+                height: h,
+                depth_or_array_layers: 1,
+            },
         );
         if mip + 1 < levels {
             level = downsample(&level, w, h, image.srgb);
@@ -40,8 +61,18 @@ pub fn upload(device: &wgpu::Device, queue: &wgpu::Queue, image: &TextureImage, 
 }
 
 /// A 1×1 texture of one colour (the default base colour).
-pub fn solid(device: &wgpu::Device, queue: &wgpu::Queue, rgba: [u8; 4], srgb: bool) -> wgpu::TextureView {
-    let image = TextureImage { width: 1, height: 1, rgba8: rgba.to_vec(), srgb };
+pub fn solid(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    rgba: [u8; 4],
+    srgb: bool,
+) -> wgpu::TextureView {
+    let image = TextureImage {
+        width: 1,
+        height: 1,
+        rgba8: rgba.to_vec(),
+        srgb,
+    };
     upload(device, queue, &image, "solid")
 }
 
@@ -65,8 +96,16 @@ fn downsample(src: &[u8], w: u32, h: u32, srgb: bool) -> Vec<u8> {
         for x in 0..nw {
             for c in 0..4 {
                 let (x2, y2) = (x * 2, y * 2);
-                let avg = (texel(x2, y2, c) + texel(x2 + 1, y2, c) + texel(x2, y2 + 1, c) + texel(x2 + 1, y2 + 1, c)) / 4.0;
-                let v = if srgb && c < 3 { linear_to_srgb(avg) } else { avg };
+                let avg = (texel(x2, y2, c)
+                    + texel(x2 + 1, y2, c)
+                    + texel(x2, y2 + 1, c)
+                    + texel(x2 + 1, y2 + 1, c))
+                    / 4.0;
+                let v = if srgb && c < 3 {
+                    linear_to_srgb(avg)
+                } else {
+                    avg
+                };
                 out[((y * nw + x) * 4) as usize + c] = (v * 255.0 + 0.5).clamp(0.0, 255.0) as u8;
             }
         }

@@ -20,7 +20,12 @@ impl PassTimer {
             count: 2,
         });
         let buffer = |usage| {
-            device.create_buffer(&wgpu::BufferDescriptor { label: Some("pass timer"), size: 16, usage, mapped_at_creation: false })
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("pass timer"),
+                size: 16,
+                usage,
+                mapped_at_creation: false,
+            })
         };
         Some(Self {
             set,
@@ -51,7 +56,10 @@ impl PassTimer {
         device.poll(wgpu::PollType::wait_indefinitely()).ok()?;
         let ticks: [u64; 2] = {
             let data = slice.get_mapped_range().ok()?;
-            [u64::from_le_bytes(data[0..8].try_into().ok()?), u64::from_le_bytes(data[8..16].try_into().ok()?)]
+            [
+                u64::from_le_bytes(data[0..8].try_into().ok()?),
+                u64::from_le_bytes(data[8..16].try_into().ok()?),
+            ]
         };
         self.readback.unmap();
         let dt = ticks[1].checked_sub(ticks[0])?;

@@ -61,7 +61,11 @@ impl UiRenderer {
         assert_eq!(atlas_rgba.len(), (w * h * 4) as usize, "UI atlas size");
         let texture = device.create_texture(&wgpu::TextureDescriptor {
             label: Some("ui atlas"),
-            size: wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
+            size: wgpu::Extent3d {
+                width: w,
+                height: h,
+                depth_or_array_layers: 1,
+            },
             mip_level_count: 1,
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,
@@ -77,8 +81,16 @@ impl UiRenderer {
                 aspect: wgpu::TextureAspect::All,
             },
             atlas_rgba,
-            wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(4 * w), rows_per_image: Some(h) },
-            wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
+            wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(4 * w),
+                rows_per_image: Some(h),
+            },
+            wgpu::Extent3d {
+                width: w,
+                height: h,
+                depth_or_array_layers: 1,
+            },
         );
         let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
         let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
@@ -136,9 +148,18 @@ impl UiRenderer {
             label: Some("ui"),
             layout: &layout,
             entries: &[
-                wgpu::BindGroupEntry { binding: 0, resource: params.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::TextureView(&view) },
-                wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::Sampler(&sampler) },
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: params.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::TextureView(&view),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: wgpu::BindingResource::Sampler(&sampler),
+                },
             ],
         });
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
@@ -171,7 +192,10 @@ impl UiRenderer {
                 stencil: Default::default(),
                 bias: Default::default(),
             }),
-            multisample: wgpu::MultisampleState { count: msaa_samples, ..Default::default() },
+            multisample: wgpu::MultisampleState {
+                count: msaa_samples,
+                ..Default::default()
+            },
             fragment: Some(wgpu::FragmentState {
                 module: &module,
                 entry_point: Some("fs_main"),
@@ -205,7 +229,12 @@ impl UiRenderer {
             return;
         }
         self.screen = size;
-        let data = [size[0] as f32, size[1] as f32, if self.srgb { 1.0 } else { 0.0 }, 0.0];
+        let data = [
+            size[0] as f32,
+            size[1] as f32,
+            if self.srgb { 1.0 } else { 0.0 },
+            0.0,
+        ];
         queue.write_buffer(&self.params, 0, bytemuck::cast_slice(&data));
     }
 
@@ -232,7 +261,11 @@ impl UiRenderer {
         }
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, &self.bind_group, &[]);
-        pass.set_vertex_buffer(0, self.vertices.slice(..self.count as u64 * std::mem::size_of::<UiVertex>() as u64));
+        pass.set_vertex_buffer(
+            0,
+            self.vertices
+                .slice(..self.count as u64 * std::mem::size_of::<UiVertex>() as u64),
+        );
         pass.draw(0..self.count, 0..1);
         1
     }

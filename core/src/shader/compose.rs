@@ -36,16 +36,29 @@ impl ShaderDefs {
 
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum ComposeError {
-    UnknownModule { module: String, imported_from: String },
+    UnknownModule {
+        module: String,
+        imported_from: String,
+    },
     ImportCycle(Vec<String>),
-    Unbalanced { module: String, line: usize, what: &'static str },
+    Unbalanced {
+        module: String,
+        line: usize,
+        what: &'static str,
+    },
 }
 
 impl fmt::Display for ComposeError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            Self::UnknownModule { module, imported_from } => {
-                write!(f, "unknown shader module `{module}` imported from `{imported_from}`")
+            Self::UnknownModule {
+                module,
+                imported_from,
+            } => {
+                write!(
+                    f,
+                    "unknown shader module `{module}` imported from `{imported_from}`"
+                )
             }
             Self::ImportCycle(chain) => write!(f, "shader import cycle: {}", chain.join(" -> ")),
             Self::Unbalanced { module, line, what } => {
@@ -59,7 +72,12 @@ impl std::error::Error for ComposeError {}
 
 /// Composes module `entry` with its imports into one WGSL source.
 pub fn compose(entry: &str, defs: &ShaderDefs) -> Result<String, ComposeError> {
-    let mut state = State { defs, out: String::new(), done: Vec::new(), stack: Vec::new() };
+    let mut state = State {
+        defs,
+        out: String::new(),
+        done: Vec::new(),
+        stack: Vec::new(),
+    };
     state.module(entry, "<root>")?;
     Ok(state.out)
 }
@@ -87,7 +105,8 @@ impl State<'_> {
             imported_from: from.to_string(),
         })?;
         self.stack.push(resolved.to_string());
-        self.out.push_str(&format!("// ---- module {resolved} ----\n"));
+        self.out
+            .push_str(&format!("// ---- module {resolved} ----\n"));
         // Each entry: (this branch active, some enclosing branch inactive).
         let mut conds: Vec<(bool, bool)> = Vec::new();
         for (i, line) in source.lines().enumerate() {
@@ -103,10 +122,14 @@ impl State<'_> {
             } else if let Some(flag) = directive(trimmed, "#ifndef") {
                 conds.push((!self.defs.has(flag), !active));
             } else if trimmed.starts_with("#else") {
-                let top = conds.last_mut().ok_or_else(|| unbalanced("#else without #ifdef"))?;
+                let top = conds
+                    .last_mut()
+                    .ok_or_else(|| unbalanced("#else without #ifdef"))?;
                 top.0 = !top.0;
             } else if trimmed.starts_with("#endif") {
-                conds.pop().ok_or_else(|| unbalanced("#endif without #ifdef"))?;
+                conds
+                    .pop()
+                    .ok_or_else(|| unbalanced("#endif without #ifdef"))?;
             } else if let Some(import) = directive(trimmed, "#import") {
                 if active {
                     self.module(import, resolved)?;
@@ -126,7 +149,11 @@ impl State<'_> {
 }
 
 fn unbalanced_end(module: &str) -> ComposeError {
-    ComposeError::Unbalanced { module: module.to_string(), line: 0, what: "missing #endif" }
+    ComposeError::Unbalanced {
+        module: module.to_string(),
+        line: 0,
+        what: "missing #endif",
+    }
 }
 
 fn directive<'l>(line: &'l str, name: &str) -> Option<&'l str> {

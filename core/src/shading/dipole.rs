@@ -9,7 +9,9 @@
 //! Eq. 3 as printed divides the virtual-source term by an extra σ'_t (wrong units): that is
 //! the `dipole-printed` variant.
 
+use super::conformance::{rows, Pixel};
 use super::{fresnel, registry::ModelParams, units, Material};
+use glam::DVec3;
 
 /// What `dipole.wgsl` reads: everything that does not vary per pixel.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -21,6 +23,10 @@ pub struct Params {
     pub sigma_t_prime: [f64; 3],
     pub total: [f64; 3],
     pub eta: f64,
+    /// σ_tr ℓ = √(3 (1 − α')) with 1 − α' = σ_a/σ'_t (nondimensional form).
+    pub s_nd: [f64; 3],
+    /// z_v / ℓ = 1 + 4A/3 (nondimensional form).
+    pub zv_nd: f64,
 }
 
 impl Params {
@@ -36,6 +42,8 @@ impl Params {
             sigma_t_prime: t,
             total: total_reflectance(m),
             eta: m.eta,
+            s_nd: m.one_minus_albedo().map(|x| (3.0 * x).sqrt()),
+            zv_nd: 1.0 + 4.0 * a / 3.0,
         }
     }
 
@@ -48,6 +56,7 @@ impl Params {
             row(self.albedo, units::LIGHT_D_MIN_M),
             row(self.total, 0.0),
             row(self.sigma_t_prime, 0.0),
+            row(self.s_nd, self.zv_nd),
         ])
     }
 
@@ -63,13 +72,60 @@ impl Params {
 
     /// f64 reference of R_d(r) as printed in eq. 3.
     pub fn profile_printed(&self, c: usize, r: f64) -> f64 {
-        let (s, zr, zv, t) = (self.sigma_tr[c], self.z_r[c], self.z_v[c], self.sigma_t_prime[c]);
+        let (s, zr, zv, t) = (
+            self.sigma_tr[c],
+            self.z_r[c],
+            self.z_v[c],
+            self.sigma_t_prime[c],
+        );
         let dr = (zr * zr + r * r).sqrt();
         let dv = (zv * zv + r * r).sqrt();
         let real = (s * dr + 1.0) * (-s * dr).exp() / (t * dr * dr * dr);
         let virt = zv * (s * dv + 1.0) * (-s * dv).exp() / (t * dv * dv * dv);
         self.albedo[c] / (4.0 * std::f64::consts::PI) * (real + virt)
     }
+}
+
+/// f64 twin of `dipole_rd_nd` (`shaders/dipole_nd.wgsl`): R_d ℓ² at ρ = r/ℓ (ℓ = 1/σ'_t),
+/// s = σ_tr ℓ = √(3(1 − α')), zv = z_v/ℓ = 1 + 4A/3. Finite for every ρ ≥ 0, s ≥ 0.
+pub fn rd_nd(rho: f64, s: f64, zv: f64, albedo: f64) -> f64 {
+    let rho2 = rho * rho;
+    let dr = (1.0 + rho2).sqrt();
+    let dv = (zv * zv + rho2).sqrt();
+    let src = (s * dr + 1.0) * (-s * dr).exp() / (dr * dr * dr);
+    let virt = zv * (s * dv + 1.0) * (-s * dv).exp() / (dv * dv * dv);
+    albedo / (4.0 * std::f64::consts::PI) * (src + virt)
+}
+
+/// f64 reference of `dipole.wgsl`'s `dipole_profile(r)` [mm⁻²] from the packed uniform.
+pub fn profile_packed(p: &ModelParams, printed: bool, r: f64) -> DVec3 {
+    let k = rows(p);
+    let v = |i: usize| DVec3::new(k[i][0], k[i][1], k[i][2]);
+    let albedo = v(3);
+    if printed {
+        let (s, zr, zv, t) = (v(0), v(1), v(2), v(5));
+        let dr = (zr * zr + DVec3::splat(r * r)).map(f64::sqrt);
+        let dv = (zv * zv + DVec3::splat(r * r)).map(f64::sqrt);
+        let real = (s * dr + 1.0) * (-s * dr).map(f64::exp) / (t * dr * dr * dr);
+        let virt = zv * (s * dv + 1.0) * (-s * dv).map(f64::exp) / (t * dv * dv * dv);
+        albedo / (4.0 * std::f64::consts::PI) * (real + virt)
+    } else {
+        let (t, s) = (v(5), v(6));
+        DVec3::from_array(std::array::from_fn(|c| {
+            t[c] * t[c] * rd_nd(t[c] * r, s[c], k[6][3], albedo[c])
+        }))
+    }
+}
+
+/// f64 reference of `dipole.wgsl`'s `shade` for the packed uniform and one pixel.
+pub fn shade(p: &ModelParams, printed: bool, px: &Pixel) -> DVec3 {
+    let k = rows(p);
+    let r = px.light_dist().max(k[3][3]) * k[1][3];
+    let eta = k[0][3];
+    let ft = fresnel::transmittance_shader(eta, px.n.dot(px.l))
+        * fresnel::transmittance_shader(eta, px.n.dot(px.v));
+    let direct = px.light * profile_packed(p, printed, r) * (ft / std::f64::consts::PI * k[2][3]);
+    px.ambient * DVec3::new(k[4][0], k[4][1], k[4][2]) + direct
 }
 
 /// Total diffuse reflectance of the dipole (Jensen 2001, eq. for R_d):

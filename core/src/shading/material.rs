@@ -54,13 +54,25 @@ impl Material {
     /// Reduced albedo α' = σ'_s / σ'_t per channel.
     pub fn albedo(&self) -> [f64; 3] {
         let t = self.sigma_t_prime();
-        std::array::from_fn(|c| if t[c] > 0.0 { self.sigma_s_prime[c] / t[c] } else { 0.0 })
+        std::array::from_fn(|c| {
+            if t[c] > 0.0 {
+                self.sigma_s_prime[c] / t[c]
+            } else {
+                0.0
+            }
+        })
     }
 
     /// 1 − α' computed without cancellation, as σ_a / σ'_t.
     pub fn one_minus_albedo(&self) -> [f64; 3] {
         let t = self.sigma_t_prime();
-        std::array::from_fn(|c| if t[c] > 0.0 { self.sigma_a[c] / t[c] } else { 1.0 })
+        std::array::from_fn(|c| {
+            if t[c] > 0.0 {
+                self.sigma_a[c] / t[c]
+            } else {
+                1.0
+            }
+        })
     }
 
     /// Effective transport coefficient σ_tr = √(3 σ_a σ'_t) [mm⁻¹].

@@ -5,11 +5,14 @@
 //! [`ShadingModel`] is the one registry of model names, used by the CLI, the UI, the renderer
 //! and every JSON output.
 
+pub mod burley;
+pub mod conformance;
 pub mod dipole;
 pub mod fresnel;
 pub mod material;
 pub mod oss;
 mod registry;
+pub mod transport;
 pub mod units;
 pub mod ward;
 

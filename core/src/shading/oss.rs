@@ -9,8 +9,21 @@
 //! the normal and itself is 0, so the lobe's θ is read as θ_h (Walter's form).
 //! As printed, f_d turns negative for thick layers (skin1: beyond ~1.4 mm in blue); the
 //! shader clamps the final radiance at 0.
+//!
+//! `oss-stable` replaces eq. 5's two terms by forms that agree with the printed top term to
+//! first order in d and stay positive and bounded for every d ≥ 0:
+//! * top: 1 − exp(−σ'_s P L(d)) with L(d) = (1 − e^{−2σ_a d})/(2σ_a) = ∫₀^d e^{−2σ_a x} dx
+//!   (the printed ∫₀^d (1 − σ_a x)² dx is its second-order expansion); evaluated as
+//!   d·E(2σ_a d) with E(x) = (1 − e^{−x})/x computed without cancellation;
+//! * bottom: F_dr,b · exp(−(σ_a + σ'_s P) d), the dimensionally consistent attenuation of the
+//!   light reflected at the bottom boundary (the printed 1 − σ_a d − σ'_s P d² mixes a length
+//!   into a dimensionless sum and goes negative).
+//!
+//! So 0 ≤ f_d ≤ (1 − F_dr)(1 + F_dr) < 1.
 
+use super::conformance::{rows, Pixel};
 use super::{fresnel, registry::ModelParams, units, ward, Material};
+use glam::DVec3;
 
 /// ρ_d, ρ_s, ρ_ts for skin (§3.3).
 pub const RHO_D: f64 = 1.0;
@@ -26,11 +39,70 @@ pub fn backward_fraction(g: f64) -> f64 {
     (1.0 - g) / (s * (1.0 + g + s))
 }
 
+/// E(x) = (1 − e^{−x})/x, with E(0) = 1, without cancellation for small x.
+pub fn one_minus_exp_over_x(x: f64) -> f64 {
+    if x.abs() < 1e-4 {
+        1.0 - x * (0.5 - x / 6.0)
+    } else {
+        -(-x).exp_m1() / x
+    }
+}
+
+/// f64 twin of `oss_fd_stable_nd` (`shaders/oss_nd.wgsl`) on the optical depths a = σ_a d and
+/// sp = σ'_s P(g) d, f = F_dr: (1 − f)(1 − e^{−sp E(2a)} + f e^{−(a + sp)}), in [0, 1 − f²].
+pub fn f_d_stable_nd(a: f64, sp: f64, f: f64) -> f64 {
+    let y = sp * one_minus_exp_over_x(2.0 * a);
+    let top = -(-y).exp_m1();
+    let bottom = f * (-(a + sp)).exp();
+    (1.0 - f) * (top + bottom)
+}
+
+/// f64 reference of `oss.wgsl`'s `oss_colour(d)` (d in mm) from the packed uniform.
+pub fn colour_packed(p: &ModelParams, stable: bool, d: f64) -> DVec3 {
+    let k = rows(p);
+    DVec3::from_array(std::array::from_fn(|c| {
+        if stable {
+            f_d_stable_nd(k[6][c] * d, k[7][c] * d, k[6][3])
+        } else {
+            k[0][c] + d * (k[1][c] + d * (k[2][c] + d * k[3][c]))
+        }
+    }))
+}
+
+/// f64 reference of `oss.wgsl`'s `shade` for the packed uniform and one pixel. The light
+/// distance in the translucency term 20 ρ_ts / d^2.5 is clamped below at
+/// [`units::OSS_LIGHT_D_MIN_M`] (packed in `misc.z`), so the term is ≤ 20 ρ_ts · 316.
+pub fn shade(p: &ModelParams, stable: bool, px: &Pixel) -> DVec3 {
+    let k = rows(p);
+    let misc = k[4];
+    let fd = colour_packed(p, stable, px.thickness() * k[0][3]);
+    let tex = if misc[3] > 0.5 { px.albedo } else { DVec3::ONE };
+    let nl = px.n.dot(px.l).max(0.0);
+    let dl = px.light_dist().max(misc[2]);
+    let translucency = 20.0 * misc[1] / dl.powf(2.5);
+    let e0 = px.irradiance();
+    let diffuse = fd * tex * (misc[0] * nl + translucency) * e0 / std::f64::consts::PI;
+    let lobe = ward::Lobe {
+        rho_s: k[5][0],
+        alpha_x: k[5][1],
+        alpha_y: k[5][2],
+    };
+    let specular = e0 * nl * ward::lobe_specular(px, &lobe, false);
+    let ambient = px.ambient * fd * tex * misc[0];
+    (ambient + diffuse + specular).max(DVec3::ZERO)
+}
+
 /// What `oss.wgsl` reads.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Params {
     /// f_d = c[0] + c[1] d + c[2] d² + c[3] d³ per channel.
     pub coeffs: [[f64; 3]; 4],
+    /// σ_a per channel (stable form).
+    pub sigma_a: [f64; 3],
+    /// σ'_s P(g) per channel (stable form).
+    pub sp: [f64; 3],
+    /// F_dr(η) (top and bottom).
+    pub fdr: f64,
     pub textured: bool,
 }
 
@@ -39,16 +111,27 @@ impl Params {
         let f = fresnel::diffuse_reflectance(m.eta);
         let (ft, fb) = (f, f);
         let p = backward_fraction(m.g);
-        let mut coeffs = [[0.0; 3]; 4];
-        for c in 0..3 {
-            let (a, sp) = (m.sigma_a[c], m.sigma_s_prime[c] * p);
-            let k = 1.0 - ft;
-            coeffs[0][c] = k * fb;
-            coeffs[1][c] = k * (sp - fb * a);
-            coeffs[2][c] = k * (-sp * a - fb * sp);
-            coeffs[3][c] = k * sp * a * a / 3.0;
+        let sp: [f64; 3] = std::array::from_fn(|c| m.sigma_s_prime[c] * p);
+        let a = m.sigma_a;
+        let k = 1.0 - ft;
+        let coeffs = [
+            [k * fb; 3],
+            std::array::from_fn(|c| k * (sp[c] - fb * a[c])),
+            std::array::from_fn(|c| k * (-sp[c] * a[c] - fb * sp[c])),
+            std::array::from_fn(|c| k * sp[c] * a[c] * a[c] / 3.0),
+        ];
+        Self {
+            coeffs,
+            sigma_a: m.sigma_a,
+            sp,
+            fdr: f,
+            textured: m.textured,
         }
-        Self { coeffs, textured: m.textured }
+    }
+
+    /// f64 reference of the stable f_d(d) for channel `c`, d in mm.
+    pub fn f_d_stable(&self, c: usize, d: f64) -> f64 {
+        f_d_stable_nd(self.sigma_a[c] * d, self.sp[c] * d, self.fdr)
     }
 
     /// f64 reference of f_d(d) for channel `c`, d in mm, exactly as eq. 5 prints it.
@@ -59,14 +142,29 @@ impl Params {
 
     pub fn pack(&self) -> ModelParams {
         let row = |v: [f64; 3], w: f64| [v[0] as f32, v[1] as f32, v[2] as f32, w as f32];
-        let lobe = ward::Lobe { rho_s: RHO_S, ..ward::Lobe::SKIN };
+        let lobe = ward::Lobe {
+            rho_s: RHO_S,
+            ..ward::Lobe::SKIN
+        };
         ModelParams::from_rows(&[
             row(self.coeffs[0], units::MM_PER_M * units::OSS_DEPTH_SCALE),
             row(self.coeffs[1], 0.0),
             row(self.coeffs[2], 0.0),
             row(self.coeffs[3], 0.0),
-            [RHO_D as f32, RHO_TS as f32, units::OSS_LIGHT_D_MIN_M as f32, self.textured as u8 as f32],
-            [lobe.rho_s as f32, lobe.alpha_x as f32, lobe.alpha_y as f32, 0.0],
+            [
+                RHO_D as f32,
+                RHO_TS as f32,
+                units::OSS_LIGHT_D_MIN_M as f32,
+                self.textured as u8 as f32,
+            ],
+            [
+                lobe.rho_s as f32,
+                lobe.alpha_x as f32,
+                lobe.alpha_y as f32,
+                0.0,
+            ],
+            row(self.sigma_a, self.fdr),
+            row(self.sp, 0.0),
         ])
     }
 }
@@ -96,10 +194,48 @@ mod tests {
     fn printed_f_d_goes_negative_in_blue_first() {
         // The observation: skin1 at η = 1.4 turns negative from ~1.4 mm in blue.
         let p = Params::new(&Material { eta: 1.4, ..SKIN1 });
-        let zero = |c| (1..4000).map(|i| i as f64 * 1e-3).find(|&d| p.f_d(c, d) < 0.0).unwrap();
+        let zero = |c| {
+            (1..4000)
+                .map(|i| i as f64 * 1e-3)
+                .find(|&d| p.f_d(c, d) < 0.0)
+                .unwrap()
+        };
         let (r, g, b) = (zero(0), zero(1), zero(2));
         assert!(b < g && g < r, "{r} {g} {b}");
         assert!((b - 1.4).abs() < 0.15 && (g - 2.0).abs() < 0.15 && (r - 2.7).abs() < 0.2);
+    }
+
+    #[test]
+    fn stable_form_is_positive_bounded_and_first_order_exact() {
+        let p = Params::new(&Material { eta: 1.4, ..SKIN1 });
+        let bound = (1.0 - p.fdr) * (1.0 + p.fdr);
+        for i in 0..=2000 {
+            let d = 1e-9 * 10f64.powf(i as f64 * 11.0 / 2000.0); // 1e-9 .. 100 mm
+            for c in 0..3 {
+                let v = p.f_d_stable(c, d);
+                assert!(v.is_finite() && v > 0.0 && v <= bound, "d={d} c={c} {v}");
+            }
+        }
+        // Same value and same top-term slope as eq. 5 at d → 0.
+        let d = 1e-6;
+        for c in 0..3 {
+            assert!((p.f_d_stable(c, 0.0) - p.f_d(c, 0.0)).abs() < 1e-15);
+            let top_slope = (1.0 - p.fdr) * p.sp[c];
+            let stable_slope = (p.f_d_stable(c, d) - p.f_d_stable(c, 0.0)) / d;
+            let bottom_slope = -(1.0 - p.fdr) * p.fdr * (p.sigma_a[c] + p.sp[c]);
+            assert!((stable_slope - (top_slope + bottom_slope)).abs() < 1e-5);
+        }
+    }
+
+    #[test]
+    fn e_of_x_is_smooth_across_the_series_switch() {
+        // Either side of the switch at 1e-4 (E' ≈ −1/2, so the two agree to ~1e-12).
+        let (a, b) = (
+            one_minus_exp_over_x(1e-4 - 1e-12),
+            one_minus_exp_over_x(1e-4 + 1e-12),
+        );
+        assert!((a - b).abs() < 1e-11, "{a} vs {b}");
+        assert_eq!(one_minus_exp_over_x(0.0), 1.0);
     }
 
     #[test]

@@ -1,6 +1,6 @@
 //! The one registry of shading-model names.
 
-use super::{dipole, oss, ward, Material};
+use super::{burley, dipole, oss, ward, Material};
 use crate::shader::ShaderDefs;
 
 /// A selectable character shading model (and the paper's printed variants).
@@ -16,6 +16,10 @@ pub enum ShadingModel {
     DipolePrinted,
     /// The authors' OSS colour model (eq. 5–6), as printed.
     Oss,
+    /// OSS with eq. 5's terms replaced by positive, bounded, dimensionally consistent forms.
+    OssStable,
+    /// Christensen–Burley normalised diffusion with a transport-solved albedo (fourth model).
+    Burley,
 }
 
 /// The uniform block a model's shader reads at `@group(1) @binding(0)`: 16 vec4s, laid out
@@ -37,12 +41,14 @@ impl ModelParams {
 
 impl ShadingModel {
     /// Every model, in menu order.
-    pub const ALL: [ShadingModel; 5] = [
+    pub const ALL: [ShadingModel; 7] = [
         ShadingModel::Ward,
         ShadingModel::WardPrinted,
         ShadingModel::Dipole,
         ShadingModel::DipolePrinted,
         ShadingModel::Oss,
+        ShadingModel::OssStable,
+        ShadingModel::Burley,
     ];
 
     /// The paper's three, as the game's menu offers them by default.
@@ -57,6 +63,8 @@ impl ShadingModel {
             Self::Dipole => "dipole",
             Self::DipolePrinted => "dipole-printed",
             Self::Oss => "oss",
+            Self::OssStable => "oss-stable",
+            Self::Burley => "burley",
         }
     }
 
@@ -68,6 +76,8 @@ impl ShadingModel {
             Self::Dipole => "Scaled BSSRDF",
             Self::DipolePrinted => "Scaled BSSRDF (as printed)",
             Self::Oss => "OSS",
+            Self::OssStable => "OSS (stable)",
+            Self::Burley => "Burley diffusion",
         }
     }
 
@@ -85,7 +95,8 @@ impl ShadingModel {
         match self {
             Self::Ward | Self::WardPrinted => "ward",
             Self::Dipole | Self::DipolePrinted => "dipole",
-            Self::Oss => "oss",
+            Self::Oss | Self::OssStable => "oss",
+            Self::Burley => "burley",
         }
     }
 
@@ -95,6 +106,7 @@ impl ShadingModel {
         match self {
             Self::WardPrinted => defs.flag("WARD_PRINTED"),
             Self::DipolePrinted => defs.flag("DIPOLE_PRINTED"),
+            Self::OssStable => defs.flag("OSS_STABLE"),
             _ => defs,
         }
     }
@@ -110,7 +122,8 @@ impl ShadingModel {
         match self {
             Self::Ward | Self::WardPrinted => ward::Params::new(material, &ward::Lobe::SKIN).pack(),
             Self::Dipole | Self::DipolePrinted => dipole::Params::new(material).pack(),
-            Self::Oss => oss::Params::new(material).pack(),
+            Self::Oss | Self::OssStable => oss::Params::new(material).pack(),
+            Self::Burley => burley::Params::new(material).pack(),
         }
     }
 }

@@ -7,7 +7,12 @@
 //! As in §4.1 the diffuse colour ρ_d is the dipole's total diffuse reflectance R_d(α')
 //! (Jensen's "BRDF approximation" of the BSSRDF) times the texture.
 
-use super::{dipole, registry::ModelParams, Material};
+use super::{
+    conformance::{rows, Pixel},
+    dipole,
+    registry::ModelParams,
+    Material,
+};
 use glam::DVec3;
 
 /// Specular lobe parameters.
@@ -23,7 +28,11 @@ pub struct Lobe {
 impl Lobe {
     /// Defaults for skin: a weak, broad, slightly anisotropic lobe (Ward fits of measured skin
     /// put ρ_s at a few percent and α around 0.3).
-    pub const SKIN: Lobe = Lobe { rho_s: 0.06, alpha_x: 0.30, alpha_y: 0.36 };
+    pub const SKIN: Lobe = Lobe {
+        rho_s: 0.06,
+        alpha_x: 0.30,
+        alpha_y: 0.36,
+    };
 }
 
 /// The paper's three sliders (§3.1).
@@ -35,7 +44,11 @@ pub struct Sliders {
 }
 
 impl Sliders {
-    pub const DEFAULT: Sliders = Sliders { diffuse: 1.0, ambient: 1.0, specular: 1.0 };
+    pub const DEFAULT: Sliders = Sliders {
+        diffuse: 1.0,
+        ambient: 1.0,
+        specular: 1.0,
+    };
 }
 
 /// What `ward.wgsl` reads.
@@ -61,7 +74,12 @@ impl Params {
         let d = self.rho_d;
         let (l, s) = (self.lobe, self.sliders);
         ModelParams::from_rows(&[
-            [d[0] as f32, d[1] as f32, d[2] as f32, self.textured as u8 as f32],
+            [
+                d[0] as f32,
+                d[1] as f32,
+                d[2] as f32,
+                self.textured as u8 as f32,
+            ],
             [l.rho_s as f32, l.alpha_x as f32, l.alpha_y as f32, 0.0],
             [s.diffuse as f32, s.ambient as f32, s.specular as f32, 0.0],
         ])
@@ -76,40 +94,62 @@ pub struct Frame {
     pub b: DVec3,
 }
 
-/// f64 reference of the specular lobe (standard form), `l` and `v` unit vectors.
-pub fn specular(frame: &Frame, l: DVec3, v: DVec3, lobe: &Lobe) -> f64 {
-    let (nl, nv) = (frame.n.dot(l), frame.n.dot(v));
-    if nl <= 0.0 || nv <= 0.0 {
+/// Smallest roughness the lobe is evaluated with (`WARD_ALPHA_MIN` in `ward_nd.wgsl`): keeps
+/// α_x α_y from underflowing, which would turn ρ_s/(4π α_x α_y …) · exp(−∞) into ∞ · 0.
+pub const ALPHA_MIN: f64 = 1e-3;
+
+/// Smallest cosθ_i cosθ_o under the lobe's square root (bounded at grazing angles).
+pub const COS_PRODUCT_MIN: f64 = 1e-6;
+
+/// f64 twin of `ward_lobe_nd` (`shaders/ward_nd.wgsl`): Walter's form on the cosines
+/// `nl` = n·l, `nv` = n·v and the components (`ht`, `hb`, `hn`) of h = l + v (unnormalised)
+/// in the frame (t, b, n), with the same guards: zero for nl ≤ 0, nv ≤ 0 or hn ≤ 1e-6
+/// (θ_h → 90°, l = −v); √ of max(nl nv, [`COS_PRODUCT_MIN`]); α ≥ [`ALPHA_MIN`]. No azimuth is
+/// formed, so h ∥ n (φ_h undefined) is an ordinary point (exponent 0).
+#[allow(clippy::too_many_arguments)]
+pub fn lobe_nd(nl: f64, nv: f64, ht: f64, hb: f64, hn: f64, rho_s: f64, ax: f64, ay: f64) -> f64 {
+    if nl <= 0.0 || nv <= 0.0 || hn <= 1e-6 {
         return 0.0;
     }
-    let h = l + v;
-    let hn = h.dot(frame.n);
-    if hn <= 0.0 {
-        return 0.0;
-    }
-    let ht = h.dot(frame.t) / lobe.alpha_x;
-    let hb = h.dot(frame.b) / lobe.alpha_y;
-    let exponent = -(ht * ht + hb * hb) / (hn * hn);
-    lobe.rho_s / (4.0 * std::f64::consts::PI * lobe.alpha_x * lobe.alpha_y * (nl * nv).sqrt())
-        * exponent.exp()
+    let (ax, ay) = (ax.max(ALPHA_MIN), ay.max(ALPHA_MIN));
+    let (x, y) = (ht / ax, hb / ay);
+    let e = -(x * x + y * y) / (hn * hn);
+    rho_s / (4.0 * std::f64::consts::PI * ax * ay * (nl * nv).max(COS_PRODUCT_MIN).sqrt()) * e.exp()
 }
 
-/// f64 reference of the lobe as printed in eq. 1: tan²θ_h (cos²φ_i/α_x² + sin²φ_o/α_y²).
+/// f64 reference of the specular lobe (standard form), `l` and `v` unit vectors: exactly what
+/// `ward_specular` computes without `WARD_PRINTED`.
+pub fn specular(frame: &Frame, l: DVec3, v: DVec3, lobe: &Lobe) -> f64 {
+    let h = l + v;
+    lobe_nd(
+        frame.n.dot(l),
+        frame.n.dot(v),
+        h.dot(frame.t),
+        h.dot(frame.b),
+        h.dot(frame.n),
+        lobe.rho_s,
+        lobe.alpha_x,
+        lobe.alpha_y,
+    )
+}
+
+/// f64 reference of the lobe as printed in eq. 1: tan²θ_h (cos²φ_i/α_x² + sin²φ_o/α_y²), with
+/// the guards of `ward_specular` under `WARD_PRINTED` (no α clamp: that is part of the defect).
 pub fn specular_printed(frame: &Frame, l: DVec3, v: DVec3, lobe: &Lobe) -> f64 {
     let (nl, nv) = (frame.n.dot(l), frame.n.dot(v));
     if nl <= 0.0 || nv <= 0.0 {
         return 0.0;
     }
-    let h = (l + v).normalize();
-    let cos_h = h.dot(frame.n);
-    if cos_h <= 0.0 {
+    if (l + v).dot(frame.n) <= 1e-6 {
         return 0.0;
     }
+    let h = (l + v).normalize();
+    let cos_h = h.dot(frame.n);
     let tan2_h = (1.0 - cos_h * cos_h).max(0.0) / (cos_h * cos_h);
     let cos2_phi = |w: DVec3| {
         let (x, y) = (w.dot(frame.t), w.dot(frame.b));
         let r2 = x * x + y * y;
-        if r2 > 0.0 {
+        if r2 > 1e-12 {
             x * x / r2
         } else {
             1.0
@@ -119,8 +159,51 @@ pub fn specular_printed(frame: &Frame, l: DVec3, v: DVec3, lobe: &Lobe) -> f64 {
     let sin2_phi_o = 1.0 - cos2_phi(v);
     let exponent = -tan2_h
         * (cos2_phi_i / (lobe.alpha_x * lobe.alpha_x) + sin2_phi_o / (lobe.alpha_y * lobe.alpha_y));
-    lobe.rho_s / (4.0 * std::f64::consts::PI * lobe.alpha_x * lobe.alpha_y * (nl * nv).sqrt())
+    lobe.rho_s
+        / (4.0
+            * std::f64::consts::PI
+            * lobe.alpha_x
+            * lobe.alpha_y
+            * (nl * nv).max(COS_PRODUCT_MIN).sqrt())
         * exponent.exp()
+}
+
+/// f64 reference of `ward.wgsl`'s `shade` for the packed uniform `p` (read back to f64, so
+/// the comparison sees only the shader's arithmetic) and one pixel.
+pub fn shade(p: &ModelParams, printed: bool, px: &Pixel) -> DVec3 {
+    let r = rows(p);
+    let tex = if r[0][3] > 0.5 { px.albedo } else { DVec3::ONE };
+    let kd = DVec3::new(r[0][0], r[0][1], r[0][2]) * tex;
+    let sliders = r[2];
+    let ambient = px.ambient * kd * sliders[1];
+    let nl = px.n.dot(px.l);
+    if nl <= 0.0 {
+        return ambient;
+    }
+    let lobe = Lobe {
+        rho_s: r[1][0],
+        alpha_x: r[1][1],
+        alpha_y: r[1][2],
+    };
+    let spec = lobe_specular(px, &lobe, printed);
+    ambient
+        + px.irradiance()
+            * nl
+            * (kd * sliders[0] / std::f64::consts::PI + DVec3::splat(spec * sliders[2]))
+}
+
+/// `ward_specular(s, …)` for a pixel, either variant.
+pub fn lobe_specular(px: &Pixel, lobe: &Lobe, printed: bool) -> f64 {
+    let frame = Frame {
+        n: px.n,
+        t: px.t,
+        b: px.b,
+    };
+    if printed {
+        specular_printed(&frame, px.l, px.v, lobe)
+    } else {
+        specular(&frame, px.l, px.v, lobe)
+    }
 }
 
 #[cfg(test)]
@@ -128,7 +211,11 @@ mod tests {
     use super::*;
 
     fn frame() -> Frame {
-        Frame { n: DVec3::Z, t: DVec3::X, b: DVec3::Y }
+        Frame {
+            n: DVec3::Z,
+            t: DVec3::X,
+            b: DVec3::Y,
+        }
     }
 
     #[test]

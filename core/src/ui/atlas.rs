@@ -92,7 +92,10 @@ impl Atlas {
             if !inside(s.rect) || 2 * s.border > s.rect[2].min(s.rect[3]) {
                 return Err(format!("ui atlas: bad sprite rect {:?}", s.rect));
             }
-            Ok(Sprite { rect: rect(s.rect), border: s.border as f32 })
+            Ok(Sprite {
+                rect: rect(s.rect),
+                border: s.border as f32,
+            })
         };
         let mut glyphs = [Glyph::default(); GLYPHS];
         let mut seen = [false; GLYPHS];
@@ -109,7 +112,10 @@ impl Atlas {
             };
         }
         if let Some(i) = seen.iter().position(|s| !s) {
-            return Err(format!("ui atlas: glyph {:?} missing", (FIRST_CHAR + i as u8) as char));
+            return Err(format!(
+                "ui atlas: glyph {:?} missing",
+                (FIRST_CHAR + i as u8) as char
+            ));
         }
         if !inside(f.white) || f.font.line_height == 0 {
             return Err("ui atlas: bad white rect or line height".into());
@@ -135,7 +141,11 @@ impl Atlas {
 
     /// The glyph of byte `c` (`?` for anything outside printable ASCII).
     pub fn glyph(&self, c: u8) -> &Glyph {
-        let c = if (FIRST_CHAR..=LAST_CHAR).contains(&c) { c } else { b'?' };
+        let c = if (FIRST_CHAR..=LAST_CHAR).contains(&c) {
+            c
+        } else {
+            b'?'
+        };
         &self.glyphs[(c - FIRST_CHAR) as usize]
     }
 }
@@ -161,13 +171,17 @@ mod tests {
         assert_eq!(rgba.len(), (w * h * 4) as usize);
         // The white block is opaque white.
         let (x, y) = (atlas.white[0] as u32, atlas.white[1] as u32);
-        assert_eq!(&rgba[((y * w + x) * 4) as usize..][..4], &[255, 255, 255, 255]);
+        assert_eq!(
+            &rgba[((y * w + x) * 4) as usize..][..4],
+            &[255, 255, 255, 255]
+        );
         // 'A' has ink.
         let g = atlas.glyph(b'A');
         let ink = (0..g.rect[3] as u32).any(|dy| {
             (0..g.rect[2] as u32).any(|dx| {
                 let (x, y) = (g.rect[0] as u32 + dx, g.rect[1] as u32 + dy);
-                rgba[((y * w + x) * 4) as usize] == 255 && rgba[((y * w + x) * 4 + 3) as usize] == 255
+                rgba[((y * w + x) * 4) as usize] == 255
+                    && rgba[((y * w + x) * 4 + 3) as usize] == 255
             })
         });
         assert!(ink);
@@ -175,7 +189,13 @@ mod tests {
 
     #[test]
     fn garbage_is_an_error_not_a_panic() {
-        for bad in ["", "{}", "[1,2]", "{\"width\": -1}", &ATLAS_JSON.replace("\"char\": 65", "\"char\": 7")] {
+        for bad in [
+            "",
+            "{}",
+            "[1,2]",
+            "{\"width\": -1}",
+            &ATLAS_JSON.replace("\"char\": 65", "\"char\": 7"),
+        ] {
             assert!(Atlas::parse(bad).is_err(), "{bad:.40}");
         }
     }

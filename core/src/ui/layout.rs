@@ -25,7 +25,12 @@ impl Rect {
 
     /// Shrunk by `d` on every side.
     pub fn inset(&self, d: f32) -> Self {
-        Self::new(self.x + d, self.y + d, (self.w - 2.0 * d).max(0.0), (self.h - 2.0 * d).max(0.0))
+        Self::new(
+            self.x + d,
+            self.y + d,
+            (self.w - 2.0 * d).max(0.0),
+            (self.h - 2.0 * d).max(0.0),
+        )
     }
 
     /// Scaled about the origin (logical → physical pixels).
@@ -49,7 +54,12 @@ pub struct Insets {
 }
 
 impl Insets {
-    pub const ZERO: Insets = Insets { left: 0.0, top: 0.0, right: 0.0, bottom: 0.0 };
+    pub const ZERO: Insets = Insets {
+        left: 0.0,
+        top: 0.0,
+        right: 0.0,
+        bottom: 0.0,
+    };
 }
 
 /// Where a widget is attached inside the safe area.

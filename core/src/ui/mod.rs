@@ -46,10 +46,25 @@ const MAX_EVENTS: usize = 16;
 
 #[derive(Clone, Debug, PartialEq)]
 enum Cmd {
-    Panel { rect: Rect },
-    Button { rect: Rect, pressed: bool, text: Range<u32>, size: f32 },
-    Label { pos: [f32; 2], text: Range<u32>, size: f32, color: Color },
-    Fill { rect: Rect, color: Color },
+    Panel {
+        rect: Rect,
+    },
+    Button {
+        rect: Rect,
+        pressed: bool,
+        text: Range<u32>,
+        size: f32,
+    },
+    Label {
+        pos: [f32; 2],
+        text: Range<u32>,
+        size: f32,
+        color: Color,
+    },
+    Fill {
+        rect: Rect,
+        color: Color,
+    },
 }
 
 /// FNV-1a, 64 bit.
@@ -165,11 +180,19 @@ impl Ui {
     /// (physical pixels per logical unit) and the safe-area `insets` (physical pixels).
     pub fn begin(&mut self, screen_w: f32, screen_h: f32, scale: f32, insets: Insets) {
         self.screen = [screen_w.max(1.0), screen_h.max(1.0)];
-        self.scale = if scale.is_finite() && scale > 0.0 { scale } else { 1.0 };
+        self.scale = if scale.is_finite() && scale > 0.0 {
+            scale
+        } else {
+            1.0
+        };
         self.insets = insets;
         self.cmds.clear();
         self.text.clear();
-        self.next_active = if self.event_count == 0 { self.active } else { None };
+        self.next_active = if self.event_count == 0 {
+            self.active
+        } else {
+            None
+        };
         self.rebuilt_this_frame = false;
         self.in_frame = true;
     }
@@ -181,7 +204,12 @@ impl Ui {
 
     /// The whole screen in logical units.
     pub fn screen_rect(&self) -> Rect {
-        Rect::new(0.0, 0.0, self.screen[0] / self.scale, self.screen[1] / self.scale)
+        Rect::new(
+            0.0,
+            0.0,
+            self.screen[0] / self.scale,
+            self.screen[1] / self.scale,
+        )
     }
 
     /// The safe area (screen minus insets) in logical units.
@@ -204,7 +232,10 @@ impl Ui {
     /// Width of `text` at `size` (logical units; `size` is the line height).
     pub fn text_width(&self, text: &str, size: f32) -> f32 {
         let k = size / self.atlas.line_height;
-        text.bytes().map(|c| self.atlas.glyph(c).advance).sum::<f32>() * k
+        text.bytes()
+            .map(|c| self.atlas.glyph(c).advance)
+            .sum::<f32>()
+            * k
     }
 
     fn push_text(&mut self, s: &str) -> Range<u32> {
@@ -230,7 +261,12 @@ impl Ui {
 
     pub fn label_colored(&mut self, pos: [f32; 2], text: &str, size: f32, color: Color) {
         let text = self.push_text(text);
-        self.cmds.push(Cmd::Label { pos, text, size, color });
+        self.cmds.push(Cmd::Label {
+            pos,
+            text,
+            size,
+            color,
+        });
     }
 
     /// Text centred in `rect`.
@@ -258,9 +294,16 @@ impl Ui {
         if held {
             self.next_active = Some(id);
         }
-        let size = (rect.h * 0.42).min(rect.w / (label.len().max(1) as f32 * 0.55)).max(1.0);
+        let size = (rect.h * 0.42)
+            .min(rect.w / (label.len().max(1) as f32 * 0.55))
+            .max(1.0);
         let text = self.push_text(label);
-        self.cmds.push(Cmd::Button { rect, pressed: held, text, size });
+        self.cmds.push(Cmd::Button {
+            rect,
+            pressed: held,
+            text,
+            size,
+        });
         clicked
     }
 
@@ -293,14 +336,24 @@ impl Ui {
                     h.u32(1);
                     h.rect(rect);
                 }
-                Cmd::Button { rect, pressed, text: t, size } => {
+                Cmd::Button {
+                    rect,
+                    pressed,
+                    text: t,
+                    size,
+                } => {
                     h.u32(2 + *pressed as u32);
                     h.rect(rect);
                     h.f32(*size);
                     h.u32(t.len() as u32);
                     h.bytes(self.text_of(t));
                 }
-                Cmd::Label { pos, text: t, size, color } => {
+                Cmd::Label {
+                    pos,
+                    text: t,
+                    size,
+                    color,
+                } => {
                     h.u32(4);
                     h.f32(pos[0]);
                     h.f32(pos[1]);
@@ -328,7 +381,11 @@ impl Ui {
     fn rebuild(&mut self) {
         let mut vertices = std::mem::take(&mut self.vertices);
         vertices.clear();
-        let b = Builder { atlas: &self.atlas, scale: self.scale, out: &mut vertices };
+        let b = Builder {
+            atlas: &self.atlas,
+            scale: self.scale,
+            out: &mut vertices,
+        };
         let mut b = b;
         for c in &self.cmds {
             match c {
@@ -337,18 +394,40 @@ impl Ui {
                     let r = b.px(rect);
                     b.quad(r, self.atlas.white, *color);
                 }
-                Cmd::Button { rect, pressed, text, size } => {
-                    let sprite = if *pressed { &self.atlas.button_pressed } else { &self.atlas.button };
+                Cmd::Button {
+                    rect,
+                    pressed,
+                    text,
+                    size,
+                } => {
+                    let sprite = if *pressed {
+                        &self.atlas.button_pressed
+                    } else {
+                        &self.atlas.button
+                    };
                     b.nine_slice(rect, sprite);
                     let s = &self.text[text.start as usize..text.end as usize];
                     let k = size / self.atlas.line_height;
                     let w: f32 = s.bytes().map(|c| self.atlas.glyph(c).advance).sum::<f32>() * k;
                     let dy = if *pressed { 1.0 } else { 0.0 };
-                    let pos = [rect.x + (rect.w - w) * 0.5, rect.y + (rect.h - size) * 0.5 + dy];
+                    let pos = [
+                        rect.x + (rect.w - w) * 0.5,
+                        rect.y + (rect.h - size) * 0.5 + dy,
+                    ];
                     b.text(pos, s, *size, WHITE);
                 }
-                Cmd::Label { pos, text, size, color } => {
-                    b.text(*pos, &self.text[text.start as usize..text.end as usize], *size, *color);
+                Cmd::Label {
+                    pos,
+                    text,
+                    size,
+                    color,
+                } => {
+                    b.text(
+                        *pos,
+                        &self.text[text.start as usize..text.end as usize],
+                        *size,
+                        *color,
+                    );
                 }
             }
         }
@@ -419,10 +498,17 @@ impl Builder<'_> {
         if p[2] <= p[0] || p[3] <= p[1] || self.out.len() + 6 > MAX_VERTICES {
             return;
         }
-        let (iw, ih) = (1.0 / self.atlas.width as f32, 1.0 / self.atlas.height as f32);
+        let (iw, ih) = (
+            1.0 / self.atlas.width as f32,
+            1.0 / self.atlas.height as f32,
+        );
         let uv = [t[0] * iw, t[1] * ih, (t[0] + t[2]) * iw, (t[1] + t[3]) * ih];
         let color = premultiply(color);
-        let v = |x: f32, y: f32, u: f32, w: f32| UiVertex { pos: [x, y], uv: [u, w], color };
+        let v = |x: f32, y: f32, u: f32, w: f32| UiVertex {
+            pos: [x, y],
+            uv: [u, w],
+            color,
+        };
         let (a, b, c, d) = (
             v(p[0], p[1], uv[0], uv[1]),
             v(p[2], p[1], uv[2], uv[1]),
@@ -438,7 +524,10 @@ impl Builder<'_> {
         let p = self.px(rect);
         let t = sprite.rect;
         let bt = sprite.border;
-        let bp = (bt * 0.75 * self.scale).round().min(((p[2] - p[0]) * 0.5).floor()).min(((p[3] - p[1]) * 0.5).floor());
+        let bp = (bt * 0.75 * self.scale)
+            .round()
+            .min(((p[2] - p[0]) * 0.5).floor())
+            .min(((p[3] - p[1]) * 0.5).floor());
         let xs = [p[0], p[0] + bp, p[2] - bp, p[2]];
         let ys = [p[1], p[1] + bp, p[3] - bp, p[3]];
         let us = [t[0], t[0] + bt, t[0] + t[2] - bt, t[0] + t[2]];
@@ -464,7 +553,11 @@ impl Builder<'_> {
             if c != b' ' {
                 let x0 = x + g.offset[0] * k;
                 let y0 = y + g.offset[1] * k;
-                self.quad([x0, y0, x0 + g.rect[2] * k, y0 + g.rect[3] * k], g.rect, color);
+                self.quad(
+                    [x0, y0, x0 + g.rect[2] * k, y0 + g.rect[3] * k],
+                    g.rect,
+                    color,
+                );
             }
             x += g.advance * k;
         }

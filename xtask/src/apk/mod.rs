@@ -33,11 +33,14 @@ const USAGE: &str = "\
 usage: cargo xtask apk [--release] [--fat-lto] [--no-ndk]
        cargo xtask apk --check-table | --write-table
        cargo xtask apk --check-imports <lib.so>
+       cargo xtask apk --clippy
 
 Builds target/apk/dermis-{debug,release}.apk (arm64-v8a, signed v2+v3, zipaligned to 16384).
   --release   release profile (thin LTO, panic=abort, stripped)
   --fat-lto   release with fat LTO (smaller, slower to build)
   --no-ndk    ignore ANDROID_NDK_HOME / ANDROID_NDK_ROOT and use the Debian toolchain
+  --clippy    clippy -D warnings on dermis-android for aarch64-linux-android (release
+              profile, so it shares host build scripts and proc-macros with `--release`)
 Environment:
   ANDROID_NDK_HOME / ANDROID_NDK_ROOT   use the NDK's clang (untested path)
   DERMIS_CLANG                          clang to use without the NDK (default: clang-19..16)
@@ -71,6 +74,7 @@ pub fn run(args: &[String]) -> Result<(), String> {
             "--no-ndk" => opts.no_ndk = true,
             "--check-table" => return check_table(&root, false),
             "--write-table" => return check_table(&root, true),
+            "--clippy" => return clippy(&root),
             "--check-imports" => {
                 let so = it.next().ok_or("--check-imports needs a path")?;
                 return check_imports_cmd(&root, Path::new(so));
@@ -83,6 +87,41 @@ pub fn run(args: &[String]) -> Result<(), String> {
         }
     }
     build(&root, &opts)
+}
+
+/// The profile settings of an APK release build (environment overrides of
+/// `[profile.release]`, so the workspace's desktop release profile is left alone).
+fn release_profile_env(cmd: &mut Command, fat_lto: bool) {
+    cmd.env(
+        "CARGO_PROFILE_RELEASE_LTO",
+        if fat_lto { "fat" } else { "thin" },
+    )
+    .env("CARGO_PROFILE_RELEASE_PANIC", "abort")
+    .env("CARGO_PROFILE_RELEASE_DEBUG", "false");
+}
+
+fn cargo() -> Command {
+    Command::new(std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into()))
+}
+
+/// `--clippy`: no linking, so no toolchain is needed.
+fn clippy(root: &Path) -> Result<(), String> {
+    let mut cmd = cargo();
+    cmd.current_dir(root).args([
+        "clippy",
+        "--release",
+        "-p",
+        CRATE,
+        "--no-deps",
+        "--target",
+        TARGET,
+        "--all-targets",
+        "--",
+        "-D",
+        "warnings",
+    ]);
+    release_profile_env(&mut cmd, false);
+    tools::run(&mut cmd)
 }
 
 fn workspace_root() -> PathBuf {
@@ -231,6 +270,8 @@ struct Toolchain {
     link_args: Vec<String>,
     strip: PathBuf,
     readelf: PathBuf,
+    /// Extra environment for cargo (C compiler for build scripts using the `cc` crate).
+    env: Vec<(String, PathBuf)>,
     description: String,
 }
 
@@ -270,6 +311,13 @@ fn ndk_toolchain(ndk: &Path, api: u32) -> Result<Toolchain, String> {
         ],
         strip: exe("llvm-strip")?,
         readelf: exe("llvm-readelf")?,
+        env: vec![
+            (
+                "CC_aarch64_linux_android".into(),
+                exe(&format!("{TARGET}{api}-clang"))?,
+            ),
+            ("AR_aarch64_linux_android".into(), exe("llvm-ar")?),
+        ],
         description: format!("NDK at {}", ndk.display()),
     })
 }
@@ -311,6 +359,7 @@ fn debian_toolchain(
         linker: llvm.clang,
         strip: llvm.strip,
         readelf,
+        env: Vec::new(),
     })
 }
 
@@ -329,21 +378,18 @@ fn build(root: &Path, opts: &Options) -> Result<(), String> {
     // Cross build. The link arguments go to the final crate only (`cargo rustc -- ...`), so
     // dependencies keep the fingerprints of a plain `cargo build --target aarch64-linux-android`.
     let profile = if opts.release { "release" } else { "debug" };
-    let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
-    let mut cmd = Command::new(cargo);
+    let mut cmd = cargo();
     cmd.current_dir(root)
         .args(["rustc", "-p", CRATE, "--lib", "--target", TARGET]);
     if opts.release {
-        cmd.arg("--release")
-            .env(
-                "CARGO_PROFILE_RELEASE_LTO",
-                if opts.fat_lto { "fat" } else { "thin" },
-            )
-            .env("CARGO_PROFILE_RELEASE_PANIC", "abort")
-            .env("CARGO_PROFILE_RELEASE_DEBUG", "false");
+        cmd.arg("--release");
+        release_profile_env(&mut cmd, opts.fat_lto);
     }
-    cmd.env("CARGO_TARGET_AARCH64_LINUX_ANDROID_LINKER", &tc.linker)
-        .arg("--");
+    cmd.env("CARGO_TARGET_AARCH64_LINUX_ANDROID_LINKER", &tc.linker);
+    for (k, v) in &tc.env {
+        cmd.env(k, v);
+    }
+    cmd.arg("--");
     for a in &tc.link_args {
         cmd.arg(format!("-Clink-arg={a}"));
     }
@@ -367,7 +413,7 @@ fn build(root: &Path, opts: &Options) -> Result<(), String> {
     if stage.exists() {
         std::fs::remove_dir_all(&stage).map_err(|e| format!("{}: {e}", stage.display()))?;
     }
-    let staged_so = stage.join(format!("lib/arm64-v8a/lib{LIB_NAME}.so"));
+    let staged_so = stage.join(format!("native/lib/arm64-v8a/lib{LIB_NAME}.so"));
     tools::mkdir(staged_so.parent().unwrap())?;
     tools::run(
         Command::new(&tc.strip)
@@ -384,7 +430,6 @@ fn build(root: &Path, opts: &Options) -> Result<(), String> {
         res: &root.join("android_app/res"),
         stage: &stage,
         work: &work,
-        lib_entry: &format!("lib/arm64-v8a/lib{LIB_NAME}.so"),
         debug: !opts.release,
         min_sdk: api,
         keystore_dir: &target.join("android-keystore"),

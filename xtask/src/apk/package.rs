@@ -18,18 +18,17 @@ pub const FRAMEWORK_RES: &str = "/usr/share/android-framework-res/framework-res.
 pub struct Package<'a> {
     pub manifest: &'a Path,
     pub res: &'a Path,
-    /// Holds `lib/…` and `assets/…`.
+    /// Holds `assets/…` and `native/lib/arm64-v8a/*.so`.
     pub stage: &'a Path,
     pub work: &'a Path,
-    pub lib_entry: &'a str,
     pub debug: bool,
     pub min_sdk: u32,
     pub keystore_dir: &'a Path,
     pub out: &'a Path,
 }
 
-/// Copies the repository's `assets/` (all files except dot-files) into `dest`; returns the
-/// number of files.
+/// Copies the repository's `assets/` into `dest` (every file but dot-files and `*.md`
+/// documentation); returns the number of files.
 pub fn stage_assets(src: &Path, dest: &Path) -> Result<usize, String> {
     let mut n = 0;
     if !src.is_dir() {
@@ -42,7 +41,7 @@ pub fn stage_assets(src: &Path, dest: &Path) -> Result<usize, String> {
         entries.sort();
         for p in entries {
             let name = p.file_name().and_then(|n| n.to_str()).unwrap_or("");
-            if name.starts_with('.') {
+            if name.starts_with('.') || name.ends_with(".md") {
                 continue;
             }
             if p.is_dir() {
@@ -163,17 +162,10 @@ pub fn package(p: &Package) -> Result<(), String> {
     if p.debug {
         cmd.arg("--debug-mode");
     }
-    cmd.arg("-F").arg(&unsigned);
+    // Raw-files directory holding `lib/arm64-v8a/*.so`: added at the APK root, stored
+    // (`-0 so`; `aapt add` would ignore `-0` and deflate it).
+    cmd.arg("-F").arg(&unsigned).arg(p.stage.join("native"));
     tools::output(&mut cmd)?;
-
-    // The library, stored; entry name = path relative to the stage directory.
-    tools::output(
-        Command::new(&aapt)
-            .current_dir(p.stage)
-            .args(["add", "-0", "so"])
-            .arg(&unsigned)
-            .arg(p.lib_entry),
-    )?;
 
     tools::output(
         Command::new(&zipalign)

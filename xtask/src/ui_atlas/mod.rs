@@ -25,6 +25,15 @@ const SPRITE_Y: u32 = 160;
 const BORDER: u32 = 16;
 const WHITE: [u32; 4] = [3 * SPRITE + 4, SPRITE_Y + 4, 8, 8];
 
+// The layout fits the atlas and nothing overlaps (checked at compile time).
+const _: () = {
+    let glyph_rows = ((font::LAST - font::FIRST) as u32 + CELL_COLS) / CELL_COLS;
+    assert!(glyph_rows * CELL_H <= SPRITE_Y);
+    assert!(WHITE[0] + WHITE[2] <= SIZE && 3 * SPRITE <= WHITE[0]);
+    assert!(SPRITE_Y + SPRITE <= SIZE);
+    assert!(PAD + font::COLS as u32 * PIXEL < CELL_W && PAD + font::ROWS as u32 * PIXEL < CELL_H);
+};
+
 struct Image {
     rgba: Vec<u8>,
 }
@@ -235,17 +244,5 @@ mod tests {
         let (b, jb) = generate();
         assert!(a == b && ja == jb);
         assert_eq!(encode_png(&a).unwrap(), encode_png(&b).unwrap());
-    }
-
-    #[test]
-    fn layout_fits_and_does_not_overlap() {
-        let glyph_rows = ((font::LAST - font::FIRST) as u32 + CELL_COLS) / CELL_COLS;
-        assert!(glyph_rows * CELL_H <= SPRITE_Y);
-        assert!(WHITE[0] + WHITE[2] <= SIZE && 3 * SPRITE <= WHITE[0]);
-        assert!(SPRITE_Y + SPRITE <= SIZE);
-        assert!(
-            PAD + font::COLS as u32 * PIXEL + 1 <= CELL_W
-                && PAD + font::ROWS as u32 * PIXEL + 1 <= CELL_H
-        );
     }
 }

@@ -1,0 +1,46 @@
+// GPU conformance harness, f32 kernel (driver: core/src/shading/conformance.rs).
+// Not a composer module: the harness appends this text, plus a per-model
+// `conformance_probe`, to `compose("shading_model", &model.defs())`, i.e. to exactly the
+// model code the renderer's character pipeline composes (same alias, same flags), with the
+// Frame uniform at @group(0) and ModelParams at @group(1) bound as in the renderer.
+// Each item builds a Surface the way make_surface does (light distance ≥ 1 mm, thickness ≥ 0)
+// and writes shade(s) and the model's sub-function probe.
+
+struct ConformanceInput {
+    n: vec4<f32>,
+    t: vec4<f32>,
+    b: vec4<f32>,
+    l: vec4<f32>,
+    v: vec4<f32>,
+    // rgb: light intensity × colour; w: light distance (m).
+    light: vec4<f32>,
+    // rgb: albedo; w: thickness (m).
+    albedo: vec4<f32>,
+    // x: the probe's argument (r or d in mm).
+    probe: vec4<f32>,
+};
+
+@group(2) @binding(0) var<storage, read> conformance_in: array<ConformanceInput>;
+@group(2) @binding(1) var<storage, read_write> conformance_out: array<vec4<f32>>;
+
+@compute @workgroup_size(64)
+fn conformance_shade(@builtin(global_invocation_id) id: vec3<u32>) {
+    let i = id.x;
+    if (i >= arrayLength(&conformance_in)) {
+        return;
+    }
+    let x = conformance_in[i];
+    var s: Surface;
+    s.pos = vec3<f32>(0.0);
+    s.n = x.n.xyz;
+    s.t = x.t.xyz;
+    s.b = x.b.xyz;
+    s.v = x.v.xyz;
+    s.l = x.l.xyz;
+    s.light_dist = max(x.light.w, 1e-3);
+    s.light = x.light.rgb;
+    s.albedo = x.albedo.rgb;
+    s.thickness = max(x.albedo.w, 0.0);
+    conformance_out[2u * i] = vec4<f32>(shade(s), 0.0);
+    conformance_out[2u * i + 1u] = vec4<f32>(conformance_probe(s, x.probe.x), 0.0);
+}

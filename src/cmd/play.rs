@@ -1,0 +1,188 @@
+//! `dermis play`: the game headless (offscreen), with a summary of what each frame cost.
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+use dermis_core::game::{GameGpu, Screen, Session, Viewport};
+use dermis_core::render::{Gpu, LiveObjects, Offscreen, OFFSCREEN_FORMAT};
+use dermis_core::scene::SceneAssets;
+use dermis_core::shading::ShadingModel;
+use dermis_core::ui::Insets;
+use serde_json::json;
+
+use crate::alloc_count::allocations;
+use crate::cli::parse_model;
+use crate::cmd::render::parse_size;
+use crate::cmd::stats::{median, percentile};
+
+#[derive(clap::Args, Debug)]
+pub struct PlayArgs {
+    /// Let the autoplay bot play (it starts runs and restarts after game over).
+    #[arg(long)]
+    pub autoplay: bool,
+    /// Frames to run.
+    #[arg(long, default_value_t = 600)]
+    pub frames: u64,
+    /// Seed of the run.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Shading model of the character.
+    #[arg(long, value_parser = parse_model)]
+    pub shading: Option<ShadingModel>,
+    /// Frame size WxH.
+    #[arg(long, default_value = "1280x720", value_parser = parse_size)]
+    pub size: (u32, u32),
+    /// Simulated frame rate (the game's fixed step makes results independent of it).
+    #[arg(long, default_value_t = 60.0)]
+    pub fps: f32,
+    /// Save PNGs of the main, play and game-over screens here.
+    #[arg(long)]
+    pub screenshots: Option<PathBuf>,
+    /// Print the summary as JSON.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Frames before steady state (pipelines warm, pools filled).
+const WARM_UP: u64 = 120;
+
+pub fn run(args: PlayArgs) -> Result<(), String> {
+    if !(1.0..=1000.0).contains(&args.fps) {
+        return Err(format!("--fps {} out of range (1..=1000)", args.fps));
+    }
+    let assets = SceneAssets::load(&crate::paths::assets_dir(), None).map_err(|e| e.to_string())?;
+    let gpu = Gpu::headless().map_err(|e| e.to_string())?;
+    let (w, h) = args.size;
+    let mut gg = GameGpu::new(&gpu, OFFSCREEN_FORMAT, &assets)?;
+    let target = Offscreen::new(&gpu, w, h);
+    let mut session = Session::new(&assets.character, args.seed, None, args.autoplay);
+    if let Some(m) = args.shading {
+        session.settings.set_shading_model(m);
+    }
+    if let Some(dir) = &args.screenshots {
+        std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    }
+    let viewport = Viewport {
+        width: w,
+        height: h,
+        scale: 1.0,
+        insets: Insets::default(),
+    };
+    let dt = 1.0 / args.fps;
+    let mut cpu_ms = Vec::with_capacity(args.frames as usize);
+    let mut dermis_allocs = Vec::with_capacity(args.frames as usize);
+    let mut wgpu_allocs = Vec::with_capacity(args.frames as usize);
+    let mut draw_calls = 0;
+    let mut max_ticks = 0;
+    let mut live_warm = None;
+    let mut live_changes = 0u64;
+    let mut shots: Vec<(&str, bool)> = vec![("main", false), ("play", false), ("game-over", false)];
+    let mut play_frames = 0u64;
+    for frame in 0..args.frames {
+        let t0 = Instant::now();
+        let a0 = allocations();
+        let info = session.update(dt, &assets.character, viewport);
+        let a1 = allocations();
+        gg.upload(&gpu.queue, &mut session, &assets.character);
+        let mut encoder = gpu
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+        let stats = gg.encode(&mut encoder, &target.targets, &target.view, &session);
+        let screen = session.game.screen();
+        play_frames = if screen == Screen::Play {
+            play_frames + 1
+        } else {
+            0
+        };
+        let want = match screen {
+            Screen::Main => 0,
+            Screen::Play if play_frames > 90 => 1,
+            Screen::GameOver => 2,
+            _ => usize::MAX,
+        };
+        let shoot = args.screenshots.is_some() && want < shots.len() && !shots[want].1;
+        if shoot {
+            target.copy_out(&mut encoder);
+        }
+        gpu.queue.submit([encoder.finish()]);
+        let a2 = allocations();
+        cpu_ms.push(t0.elapsed().as_secs_f64() * 1e3);
+        gpu.wait();
+        if shoot {
+            let dir = args.screenshots.as_ref().expect("checked above");
+            let path = dir.join(format!("{}.png", shots[want].0));
+            target.read(&gpu).save_png(&path)?;
+            shots[want].1 = true;
+        }
+        dermis_allocs.push((a1 - a0) as f64);
+        wgpu_allocs.push((a2 - a1) as f64);
+        draw_calls = draw_calls.max(stats.draw_calls);
+        max_ticks = max_ticks.max(info.ticks);
+        if frame == WARM_UP {
+            live_warm = Some(LiveObjects::read(&gpu.device));
+        } else if let Some(warm) = live_warm {
+            if LiveObjects::read(&gpu.device) != warm {
+                live_changes += 1;
+            }
+        }
+    }
+    let steady = |v: &[f64]| -> Vec<f64> { v.iter().skip(WARM_UP as usize).copied().collect() };
+    let (d, wg, cpu) = (
+        steady(&dermis_allocs),
+        steady(&wgpu_allocs),
+        steady(&cpu_ms),
+    );
+    let g = &session.game;
+    let report = json!({
+        "adapter": gpu.adapter_name(),
+        "frames": args.frames,
+        "seed": args.seed,
+        "shading": session.shading().name(),
+        "runs": g.runs(),
+        "ticks": g.ticks(),
+        "score": g.score(),
+        "best": g.best(),
+        "dermis_allocations_per_frame": d.iter().copied().fold(0.0, f64::max),
+        "wgpu_allocations_per_frame": {"median": median(&wg), "max": wg.iter().copied().fold(0.0, f64::max)},
+        "ui_rebuilds": session.ui.rebuilds(),
+        "draw_calls_per_frame": draw_calls,
+        "cpu_frame_ms": {"p50": percentile(&cpu, 0.5), "p95": percentile(&cpu, 0.95), "p99": percentile(&cpu, 0.99)},
+        "gpu_objects_live_after_warm_up": live_warm,
+        "frames_with_gpu_object_count_changes": live_changes,
+        "screenshots": shots.iter().filter(|s| s.1).map(|s| s.0).collect::<Vec<_>>(),
+    });
+    if args.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?
+        );
+        return Ok(());
+    }
+    println!("adapter: {}", gpu.adapter_name());
+    println!(
+        "{} frames, {} runs, score {}, best {}, shading {}",
+        args.frames,
+        g.runs(),
+        g.score(),
+        g.best(),
+        session.shading()
+    );
+    println!("after {WARM_UP} warm-up frames:");
+    println!(
+        "  dermis allocations per frame (max): {}",
+        report["dermis_allocations_per_frame"]
+    );
+    println!(
+        "  wgpu allocations per frame: median {} max {}",
+        median(&wg),
+        report["wgpu_allocations_per_frame"]["max"]
+    );
+    println!("  GPU objects changed on {live_changes} frames; UI rebuilds {}; draw calls/frame {draw_calls}", session.ui.rebuilds());
+    println!(
+        "  CPU frame ms: p50 {:.3} p95 {:.3} p99 {:.3}",
+        percentile(&cpu, 0.5),
+        percentile(&cpu, 0.95),
+        percentile(&cpu, 0.99)
+    );
+    Ok(())
+}

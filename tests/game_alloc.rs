@@ -1,0 +1,94 @@
+//! The game's and the UI's per-frame code allocates nothing in steady state (§4.3 item 1):
+//! game update (bot sampled per tick), prop placement export, animation state, camera
+//! target and building the UI (including frames where the score text changes and the vertex
+//! data is rebuilt). A counting global allocator; one test in this binary, so one thread.
+
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use dermis_core::game::{Bot, Game, GameUi, Screen, Settings};
+use dermis_core::render::PropInstance;
+use dermis_core::ui::{Insets, Ui};
+
+struct Counting;
+static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
+
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        unsafe { System.alloc(layout) }
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        unsafe { System.dealloc(ptr, layout) }
+    }
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        unsafe { System.realloc(ptr, layout, new_size) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+#[test]
+fn steady_state_frames_allocate_nothing() {
+    let mut game = Game::new(77);
+    let bot = Bot::new(77);
+    let mut ui = Ui::with_embedded_atlas();
+    let mut gui = GameUi::new();
+    let mut settings = Settings::default();
+    let mut props: Vec<PropInstance> = Vec::with_capacity(Game::MAX_PROPS);
+    let mut checksum = 0.0f32;
+    let mut frame = |game: &mut Game, ui: &mut Ui, props: &mut Vec<PropInstance>| {
+        game.update_with(1.0 / 60.0, |g| bot.decide(g));
+        game.props(props);
+        let anim = game.anim_state();
+        let (cam, _) = game.camera_target();
+        let m = game.player_matrix();
+        ui.begin(
+            1920.0,
+            1080.0,
+            1.5,
+            Insets {
+                left: 0.0,
+                top: 30.0,
+                right: 0.0,
+                bottom: 40.0,
+            },
+        );
+        gui.draw(ui, game, &mut settings);
+        ui.end();
+        if ui.needs_upload() {
+            checksum += ui.vertices().len() as f32;
+            ui.mark_uploaded();
+        }
+        checksum += anim.blend[1].1 + cam.z + m.w_axis.z + props.len() as f32;
+    };
+    // Warm-up: the main screen, a first run and its growth of every buffer.
+    for _ in 0..60 * 60 {
+        frame(&mut game, &mut ui, &mut props);
+    }
+    let (rebuilds0, runs0) = (ui.rebuilds(), game.runs());
+    let mut screens = [false; 3];
+    let before = ALLOCATIONS.load(Ordering::Relaxed);
+    for _ in 0..60 * 240 {
+        frame(&mut game, &mut ui, &mut props);
+        screens[game.screen() as usize] = true;
+    }
+    let allocations = ALLOCATIONS.load(Ordering::Relaxed) - before;
+    assert!(
+        ui.rebuilds() > rebuilds0 + 100,
+        "the score changed and the UI was rebuilt"
+    );
+    assert!(
+        screens[Screen::Play as usize] && screens[Screen::GameOver as usize],
+        "{screens:?}"
+    );
+    eprintln!(
+        "{allocations} allocations in {} frames ({} UI rebuilds, {} runs, checksum {checksum})",
+        60 * 240,
+        ui.rebuilds() - rebuilds0,
+        game.runs() - runs0
+    );
+    assert_eq!(allocations, 0);
+}
