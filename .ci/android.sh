@@ -60,7 +60,7 @@ apt_packages() {
     export DEBIAN_FRONTEND=noninteractive
     # arm64 package lists are needed only for `apt-get download libunwind-19-dev:arm64`
     # (extracted into target/, never installed).
-    if ! dpkg --print-foreign-architectures | grep -qx arm64; then
+    if [[ " $(dpkg --print-foreign-architectures | tr "\n" " ") " != *" arm64 "* ]]; then
         $SUDO dpkg --add-architecture arm64 || return 1
     fi
     $SUDO apt-get update -qq || return 1
@@ -165,15 +165,23 @@ check_apk() {
         so=$work/$(basename "$lib")
         unzip -p "$APK" "$lib" >"$so"
         echo "--- $lib"
-        if $readelf -h "$so" | grep -qE 'Machine:\s+AArch64' &&
-            $readelf -h "$so" | grep -qE 'Type:\s+DYN'; then
+        # Outputs are captured first: with pipefail, `readelf | grep -q` can fail on SIGPIPE.
+        local header dynamic dynsyms segments sections notes
+        header=$($readelf -h "$so")
+        dynamic=$($readelf -d "$so")
+        dynsyms=$($readelf --dyn-syms -W "$so")
+        segments=$($readelf -lW "$so")
+        sections=$($readelf -SW "$so")
+        notes=$($readelf -n "$so")
+        if grep -qE 'Machine:[[:space:]]+AArch64' <<<"$header" &&
+            grep -qE 'Type:[[:space:]]+DYN' <<<"$header"; then
             pass "ELF aarch64 shared object"
         else
             fail "ELF aarch64 shared object"
         fi
 
         local needed bad_needed=""
-        needed=$($readelf -d "$so" | sed -n 's/.*(NEEDED).*\[\(.*\)\]/\1/p')
+        needed=$(sed -n 's/.*(NEEDED).*\[\(.*\)\]/\1/p' <<<"$dynamic")
         for n in $needed; do
             [[ " $ALLOWED_NEEDED " == *" $n "* ]] || bad_needed+=" $n"
         done
@@ -183,8 +191,7 @@ check_apk() {
             fail "NEEDED outside the allowed set:$bad_needed"
         fi
 
-        if $readelf --dyn-syms -W "$so" |
-            awk '$8 == "ANativeActivity_onCreate" && $4 == "FUNC" && $5 == "GLOBAL" && $7 != "UND" { ok = 1 } END { exit !ok }'; then
+        if awk '$8 == "ANativeActivity_onCreate" && $4 == "FUNC" && $5 == "GLOBAL" && $7 != "UND" { ok = 1 } END { exit !ok }' <<<"$dynsyms"; then
             pass "exports ANativeActivity_onCreate"
         else
             fail "exports ANativeActivity_onCreate"
@@ -197,26 +204,26 @@ check_apk() {
         fi
 
         local aligns
-        aligns=$($readelf -lW "$so" | awk '$1 == "LOAD" { print $NF }' | sort -u)
+        aligns=$(awk '$1 == "LOAD" { print $NF }' <<<"$segments" | sort -u)
         if [ -n "$aligns" ] && [ "$aligns" = "0x4000" ]; then
             pass "every LOAD segment aligned to 16 KB"
         else
             fail "LOAD alignment: $(echo $aligns) (want 0x4000)"
         fi
 
-        if $readelf -d "$so" | grep -qE 'TEXTREL'; then
+        if grep -qE 'TEXTREL' <<<"$dynamic"; then
             fail "has TEXTREL"
         else
             pass "no TEXTREL"
         fi
 
-        if $readelf -SW "$so" | grep -qE ' \.(symtab|debug_[a-z_]+) '; then
+        if grep -qE ' \.(symtab|debug_[a-z_]+) ' <<<"$sections"; then
             fail "not stripped (.symtab / .debug_* present)"
         else
             pass "stripped (no .symtab, no .debug_*)"
         fi
 
-        if $readelf -n "$so" | grep -q 'NT_ANDROID_TYPE_IDENT'; then
+        if grep -q 'NT_ANDROID_TYPE_IDENT' <<<"$notes"; then
             pass ".note.android.ident present"
         else
             fail ".note.android.ident present"

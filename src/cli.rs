@@ -74,6 +74,8 @@ pub enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Total diffuse reflectance of every model next to a Monte Carlo reference.
+    Sss(cmd::sss::SssArgs),
     /// Benchmarks that print numbers (JSON + a table).
     Bench(cmd::bench::BenchArgs),
 }
@@ -104,5 +106,6 @@ pub fn run(cli: Cli) -> Result<(), String> {
             Ok(())
         }
         Some(Command::Bench(args)) => cmd::bench::run(args),
+        Some(Command::Sss(args)) => cmd::sss::run(args),
     }
 }

@@ -23,7 +23,7 @@ use crate::demo::Demo;
 enum Mode {
     Game {
         session: Box<Session>,
-        assets: SceneAssets,
+        assets: Box<SceneAssets>,
         gpu: Option<Box<GameGpu>>,
     },
     Demo {
@@ -70,7 +70,7 @@ pub fn run_game(args: WindowArgs) -> Result<(), String> {
         args,
         Mode::Game {
             session: Box::new(session),
-            assets,
+            assets: Box::new(assets),
             gpu: None,
         },
     )

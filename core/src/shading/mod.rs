@@ -11,6 +11,7 @@ pub mod dipole;
 pub mod fresnel;
 pub mod material;
 pub mod oss;
+pub mod prediction;
 mod registry;
 pub mod transport;
 pub mod units;

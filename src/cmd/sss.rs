@@ -1,0 +1,201 @@
+//! `dermis sss`: every model's total diffuse reflectance next to the Monte Carlo reference.
+
+use dermis_core::mc::{self, Medium};
+use dermis_core::shading::{prediction, Material, ShadingModel};
+use serde_json::{json, Map, Value};
+
+use crate::cli::parse_material;
+
+#[derive(clap::Args, Debug)]
+pub struct SssArgs {
+    /// Material preset (skin1 | white-coat).
+    #[arg(long, default_value = "skin1", value_parser = parse_material)]
+    pub material: Material,
+    /// Relative index of refraction (default: the preset's).
+    #[arg(long)]
+    pub eta: Option<f64>,
+    /// Henyey–Greenstein anisotropy g (σ_s = σ'_s/(1−g) in the Monte Carlo).
+    #[arg(long, default_value_t = 0.0)]
+    pub g: f64,
+    /// Photons per channel and geometry.
+    #[arg(long, default_value_t = 100_000)]
+    pub photons: u64,
+    /// Seed of the Monte Carlo.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Print JSON.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Slab thicknesses (mm).
+pub const SLABS: [f64; 4] = [0.5, 1.0, 2.0, 5.0];
+
+/// Monte Carlo reference: value and standard error per channel, per entered power.
+pub struct Reference {
+    pub semi_infinite: ([f64; 3], [f64; 3]),
+    pub slabs: Vec<(f64, [f64; 3], [f64; 3])>,
+}
+
+pub fn validate(material: &Material, eta: f64, g: f64, photons: u64) -> Result<(), String> {
+    if !(1.0..=3.0).contains(&eta) {
+        return Err(format!("--eta {eta} out of range (1..=3)"));
+    }
+    if !(-0.99..=0.99).contains(&g) {
+        return Err(format!("--g {g} out of range (-0.99..=0.99)"));
+    }
+    if !(1000..=100_000_000).contains(&photons) {
+        return Err(format!("--photons {photons} out of range (1000..=1e8)"));
+    }
+    let _ = material;
+    Ok(())
+}
+
+pub fn reference(material: &Material, photons: u64, seed: u64) -> Reference {
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let medium = |c: usize| Medium {
+        sigma_a: material.sigma_a[c],
+        sigma_s_prime: material.sigma_s_prime[c],
+        g: material.g,
+        eta: material.eta,
+    };
+    let specular = mc::fresnel::fresnel(1.0, material.eta).0;
+    let entered = 1.0 / (1.0 - specular);
+    let mut semi = ([0.0; 3], [0.0; 3]);
+    for c in 0..3 {
+        let e = mc::total_reflectance(&medium(c), photons, seed + c as u64, threads);
+        semi.0[c] = e.mean * entered;
+        semi.1[c] = e.std_err * entered;
+    }
+    let slabs = SLABS
+        .iter()
+        .map(|&d| {
+            let mut v = ([0.0; 3], [0.0; 3]);
+            for c in 0..3 {
+                let s = mc::slab(&medium(c), d, photons, seed + 10 + c as u64, threads);
+                v.0[c] = s.r.mean * entered;
+                v.1[c] = s.r.std_err * entered;
+            }
+            (d, v.0, v.1)
+        })
+        .collect();
+    Reference {
+        semi_infinite: semi,
+        slabs,
+    }
+}
+
+fn rel(model: [f64; 3], reference: [f64; 3]) -> [f64; 3] {
+    std::array::from_fn(|c| model[c] / reference[c] - 1.0)
+}
+
+pub fn run(args: SssArgs) -> Result<(), String> {
+    let eta = args.eta.unwrap_or(args.material.eta);
+    validate(&args.material, eta, args.g, args.photons)?;
+    let material = Material {
+        eta,
+        g: args.g,
+        ..args.material
+    };
+    let reference = reference(&material, args.photons, args.seed);
+    let mut ref_slab = Map::new();
+    let mut ref_slab_se = Map::new();
+    for (d, v, se) in &reference.slabs {
+        ref_slab.insert(d.to_string(), json!(v));
+        ref_slab_se.insert(d.to_string(), json!(se));
+    }
+    let mut models = Map::new();
+    for model in ShadingModel::ALL {
+        let semi = prediction::total_reflectance(model, &material, None);
+        let mut slab = Map::new();
+        let mut slab_err = Map::new();
+        for (d, v, _) in &reference.slabs {
+            let p = prediction::total_reflectance(model, &material, Some(*d));
+            slab.insert(d.to_string(), json!(p));
+            slab_err.insert(d.to_string(), json!(rel(p, *v)));
+        }
+        models.insert(
+            model.name().into(),
+            json!({
+                "semi_infinite": semi,
+                "slab": slab,
+                "relative_error": {"semi_infinite": rel(semi, reference.semi_infinite.0), "slab": slab_err},
+            }),
+        );
+    }
+    let report = json!({
+        "material": args.material.name,
+        "eta": eta,
+        "g": args.g,
+        "photons": args.photons,
+        "convention": "diffuse reflectance per unit power entering the medium (Jensen's R_d), normal incidence, specular excluded",
+        "reference": {
+            "semi_infinite": reference.semi_infinite.0,
+            "semi_infinite_std_err": reference.semi_infinite.1,
+            "slab": Value::Object(ref_slab),
+            "slab_std_err": Value::Object(ref_slab_se),
+        },
+        "models": Value::Object(models),
+    });
+    if args.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?
+        );
+        return Ok(());
+    }
+    println!(
+        "{} η={eta} g={} — total diffuse reflectance (R, G, B), relative error vs Monte Carlo ({} photons)",
+        args.material.name, args.g, args.photons
+    );
+    let (r, se) = reference.semi_infinite;
+    println!(
+        "{:<16} {:>28}",
+        "semi-infinite",
+        format!(
+            "MC {:.4} {:.4} {:.4} (±{:.4})",
+            r[0],
+            r[1],
+            r[2],
+            se[0].max(se[1]).max(se[2])
+        )
+    );
+    for model in ShadingModel::ALL {
+        let p = prediction::total_reflectance(model, &material, None);
+        let e = rel(p, r);
+        println!(
+            "  {:<14} {:.4} {:.4} {:.4}   {:+6.1} % {:+6.1} % {:+6.1} %",
+            model.name(),
+            p[0],
+            p[1],
+            p[2],
+            e[0] * 100.0,
+            e[1] * 100.0,
+            e[2] * 100.0
+        );
+    }
+    for (d, v, se) in &reference.slabs {
+        println!(
+            "slab {d} mm: MC {:.4} {:.4} {:.4} (±{:.4})",
+            v[0],
+            v[1],
+            v[2],
+            se[0].max(se[1]).max(se[2])
+        );
+        for model in ShadingModel::ALL {
+            let p = prediction::total_reflectance(model, &material, Some(*d));
+            let e = rel(p, *v);
+            println!(
+                "  {:<14} {:.4} {:.4} {:.4}   {:+6.1} % {:+6.1} % {:+6.1} %",
+                model.name(),
+                p[0],
+                p[1],
+                p[2],
+                e[0] * 100.0,
+                e[1] * 100.0,
+                e[2] * 100.0
+            );
+        }
+    }
+    Ok(())
+}
