@@ -9,8 +9,8 @@
 set -uo pipefail
 
 cd "$(dirname "$0")/.."
-ROOT=$(pwd)
-APK=target/apk/dermis-release.apk
+TARGET_DIR=${CARGO_TARGET_DIR:-target}
+APK=$TARGET_DIR/apk/dermis-release.apk
 PACKAGE=org.dermis.app
 MIN_SDK=26
 TARGET_SDK=35
@@ -101,7 +101,7 @@ check_apk() {
         fail "$APK missing"
         return 0
     }
-    local work=target/apk/ci-check
+    local work=$TARGET_DIR/apk/ci-check
     rm -rf "$work" && mkdir -p "$work"
 
     # --- signature

@@ -43,6 +43,11 @@ fn vs_main(v: VertexIn) -> VertexOut {
 @fragment
 fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     let albedo = textureSample(base_color, base_sampler, in.uv).rgb;
-    let s = make_surface(in.world_pos, in.normal, in.tangent, albedo, in.thickness);
+    var s = make_surface(in.world_pos, in.normal, in.tangent, albedo, in.thickness);
+    // Curvature radius from screen-space derivatives: how far the surface moves per unit of
+    // normal change across a pixel (large on flat parts, small on fingers and ears).
+    let dn = length(fwidth(in.normal));
+    let dp = length(fwidth(in.world_pos));
+    s.curvature_radius = min(dp / max(dn, 1e-6), FLAT_RADIUS_M);
     return finish(shade(s));
 }

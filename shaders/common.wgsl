@@ -35,7 +35,11 @@ struct Surface {
     albedo: vec3<f32>,
     // Material thickness through this point (m).
     thickness: f32,
+    // Radius of curvature of the surface here (m); FLAT_RADIUS_M where unknown.
+    curvature_radius: f32,
 };
+
+const FLAT_RADIUS_M: f32 = 1e6;
 
 fn safe_normalize(v: vec3<f32>, fallback: vec3<f32>) -> vec3<f32> {
     let len2 = dot(v, v);
@@ -66,6 +70,7 @@ fn make_surface(pos: vec3<f32>, normal: vec3<f32>, tangent: vec4<f32>, albedo: v
     s.light = frame.light_pos.w * frame.light_color.rgb;
     s.albedo = albedo;
     s.thickness = max(thickness, 0.0);
+    s.curvature_radius = FLAT_RADIUS_M;
     return s;
 }
 

@@ -8,6 +8,7 @@
 pub mod anim;
 pub mod asset;
 pub mod camera;
+pub mod flat;
 pub mod game;
 pub mod mc;
 pub mod pool;

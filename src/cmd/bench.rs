@@ -36,6 +36,8 @@ pub enum BenchKind {
         #[arg(long)]
         json: bool,
     },
+    /// The accuracy-vs-time table: errors against Monte Carlo, GPU cost, shader size.
+    Shading(crate::cmd::bench_shading::ShadingArgs),
 }
 
 pub fn run(args: BenchArgs) -> Result<(), String> {
@@ -46,6 +48,7 @@ pub fn run(args: BenchArgs) -> Result<(), String> {
             out,
             json,
         } => frame(rounds.max(3), frames.max(10), out, json),
+        BenchKind::Shading(args) => crate::cmd::bench_shading::run(args),
     }
 }
 

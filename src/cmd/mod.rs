@@ -1,4 +1,7 @@
 pub mod bench;
+pub mod bench_shading;
+pub mod chart;
+pub mod gputime;
 pub mod play;
 pub mod pose;
 pub mod render;

@@ -1,5 +1,5 @@
-//! A fourth model: the Christensen–Burley normalised diffusion profile (2015) in the paper's
-//! "scaled" set-up (WGSL: `shaders/burley.wgsl`).
+//! A fourth model: transport-exact albedo with a Christensen–Burley normalised-diffusion
+//! wrap (WGSL: `shaders/burley.wgsl`).
 //!
 //! R(r) = A · k · (e^{−k r} + e^{−k r/3}) / (8π r), k = s/ℓ, which integrates to exactly A over
 //! the plane. ℓ = 1/σ'_t is the mean free path and s = 1.85 − A + 7|A − 0.8|³ is Christensen
@@ -8,9 +8,15 @@
 //! transport solution of the semi-infinite medium with the same σ_a, σ'_s, g, η
 //! ([`surface_albedo`]) — never from the Monte Carlo reference — so the total diffuse
 //! reflectance is right even where diffusion theory (the dipole) is not, at low albedo.
-//! Shading is as for the dipole: radiance = I · F_t(ω_i) F_t(ω_o) · R(r) · area / π, with r
-//! the scaled light distance and a grey texture; per pixel it costs two exponentials and no
-//! square roots.
+//!
+//! Shading: on a locally flat surface the exitance under irradiance E is F_t(θ_i)·A·E, since
+//! the profile integrates to A. On a curved surface light diffuses a distance ~1/k, which
+//! wraps it around the terminator: w = 1/(k ρ) per channel (ρ the radius of curvature from
+//! screen-space derivatives, red wraps most), with the energy-normalised wrap
+//! (n·l + w)/(1 + w)² — a closed-form stand-in for Penner's pre-integrated ring integral.
+//! radiance = E·F_t(η, max(n·l, 0.25))·A·wrap/π + ambient·A, grey texture, no specular lobe.
+//! Unlike the paper's scaled dipole it is in physical units, so on flat ground it converges
+//! to the transport solution. Per pixel: one division and a Fresnel term, no exponentials.
 
 use super::conformance::{rows, Pixel};
 use super::{fresnel, registry::ModelParams, transport, units, Material};
@@ -44,15 +50,29 @@ pub fn profile_packed(p: &ModelParams, r_mm: f64) -> DVec3 {
     }))
 }
 
-/// f64 reference of `burley.wgsl`'s `shade` for the packed uniform and one pixel.
-pub fn shade(p: &ModelParams, px: &Pixel) -> DVec3 {
+/// Wrap strength (1: the full w = 1/(kρ)).
+pub const WRAP: f64 = 1.0;
+
+/// f64 reference of `burley.wgsl`'s `shade` for the packed uniform and one pixel whose
+/// curvature radius is `curvature_m` (the conformance harness leaves it 0: maximal wrap).
+pub fn shade_curved(p: &ModelParams, px: &Pixel, curvature_m: f64) -> DVec3 {
     let k = rows(p);
-    let r = px.light_dist().max(k[2][2]) * k[1][3];
     let eta = k[0][3];
-    let ft = fresnel::transmittance_shader(eta, px.n.dot(px.l))
-        * fresnel::transmittance_shader(eta, px.n.dot(px.v));
-    let direct = px.light * profile_packed(p, r) * (ft / std::f64::consts::PI * k[2][0]);
-    px.ambient * DVec3::new(k[0][0], k[0][1], k[0][2]) + direct
+    let nl = px.n.dot(px.l);
+    let rho_mm = curvature_m * 1000.0;
+    let e = px.light / (px.light_dist() * px.light_dist());
+    let ft = fresnel::transmittance_shader(eta, nl.max(0.25));
+    let albedo = DVec3::new(k[0][0], k[0][1], k[0][2]);
+    let wrapped = DVec3::from_array(std::array::from_fn(|c| {
+        let w = (1.0 / (k[1][c] * rho_mm).max(1e-6)).min(1.0) * k[2][3];
+        (nl + w).max(0.0) / ((1.0 + w) * (1.0 + w))
+    }));
+    px.ambient * albedo + e / std::f64::consts::PI * ft * albedo * wrapped
+}
+
+/// f64 reference of `shade` as the conformance harness calls it (curvature radius 0).
+pub fn shade(p: &ModelParams, px: &Pixel) -> DVec3 {
+    shade_curved(p, px, 0.0)
 }
 
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -88,10 +108,10 @@ impl Params {
             row(self.albedo, self.eta),
             row(self.k, units::MM_PER_M * units::DIPOLE_R_SCALE),
             [
-                units::DIPOLE_AREA_MM2 as f32,
+                0.0,
                 R_MIN_MM as f32,
                 units::LIGHT_D_MIN_M as f32,
-                0.0,
+                WRAP as f32,
             ],
         ])
     }
