@@ -78,6 +78,8 @@ pub enum Command {
     Sss(cmd::sss::SssArgs),
     /// Benchmarks that print numbers (JSON + a table).
     Bench(cmd::bench::BenchArgs),
+    /// Play on autoplay for N seconds and report sustained frame time, pacing and memory.
+    Soak(cmd::soak::SoakArgs),
 }
 
 pub fn parse_model(s: &str) -> Result<ShadingModel, String> {
@@ -107,5 +109,6 @@ pub fn run(cli: Cli) -> Result<(), String> {
         }
         Some(Command::Bench(args)) => cmd::bench::run(args),
         Some(Command::Sss(args)) => cmd::sss::run(args),
+        Some(Command::Soak(args)) => cmd::soak::run(args),
     }
 }

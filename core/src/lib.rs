@@ -10,6 +10,7 @@ pub mod asset;
 pub mod camera;
 pub mod flat;
 pub mod game;
+pub mod governor;
 pub mod mc;
 pub mod pool;
 pub mod render;

@@ -38,6 +38,8 @@ pub enum BenchKind {
     },
     /// The accuracy-vs-time table: errors against Monte Carlo, GPU cost, shader size.
     Shading(crate::cmd::bench_shading::ShadingArgs),
+    /// GPU and CPU time saved by effect scheduling (tier by coverage and light), on/off ratios.
+    Effects(crate::cmd::soak::EffectsArgs),
 }
 
 pub fn run(args: BenchArgs) -> Result<(), String> {
@@ -49,6 +51,7 @@ pub fn run(args: BenchArgs) -> Result<(), String> {
             json,
         } => frame(rounds.max(3), frames.max(10), out, json),
         BenchKind::Shading(args) => crate::cmd::bench_shading::run(args),
+        BenchKind::Effects(args) => crate::cmd::soak::bench_effects(args),
     }
 }
 

@@ -5,5 +5,6 @@ pub mod gputime;
 pub mod play;
 pub mod pose;
 pub mod render;
+pub mod soak;
 pub mod sss;
 pub mod stats;

@@ -64,13 +64,9 @@ mod tests {
     fn the_standard_dipole_integrates_to_its_closed_form() {
         let p = dipole::Params::new(&SKIN1);
         let closed = dipole::total_reflectance(&SKIN1);
-        for c in 0..3 {
+        for (c, closed) in closed.iter().enumerate() {
             let num = integrate_radial(|r| p.profile(c, r));
-            assert!(
-                (num / closed[c] - 1.0).abs() < 1e-4,
-                "{num} vs {}",
-                closed[c]
-            );
+            assert!((num / closed - 1.0).abs() < 1e-4, "{num} vs {closed}");
         }
     }
 
