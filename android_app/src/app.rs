@@ -1,10 +1,17 @@
-//! GPU side of the Android app: wgpu instance/adapter/device (created once, on the first
-//! window, kept across pause/resume), the window surface (created on InitWindow, dropped on
-//! TermWindow), and the frame. For now a frame clears the screen with a slowly changing
-//! colour; the real renderer replaces [`Renderer::draw`].
+//! GPU side of the Android app: the wgpu context ([`dermis_core::render::Gpu`], created once
+//! on the first window, kept across pause/resume, so limits and features match the desktop),
+//! the game's GPU objects ([`GameGpu`]: every pipeline, the scene and the UI, created with the
+//! first surface and kept), the window surface (created on InitWindow, dropped on TermWindow)
+//! with its MSAA colour / depth [`Targets`], and the frame: the same
+//! [`Session`] loop as the desktop window (update → upload → one pass → present).
 
 use crate::lifecycle::FrameStatus;
 use android_activity::ndk::native_window::NativeWindow;
+use dermis_core::game::{GameGpu, Key, Screen, Session, Viewport};
+use dermis_core::render::{Gpu, Targets};
+use dermis_core::scene::SceneAssets;
+use dermis_core::ui::Insets;
+use std::path::PathBuf;
 use std::time::Instant;
 use wgpu::rwh::{
     AndroidDisplayHandle, AndroidNdkWindowHandle, DisplayHandle, HandleError, HasDisplayHandle,
@@ -31,37 +38,85 @@ impl HasDisplayHandle for AndroidWindow {
     }
 }
 
-struct Gpu {
-    instance: wgpu::Instance,
-    adapter: wgpu::Adapter,
-    device: wgpu::Device,
-    queue: wgpu::Queue,
-}
-
+/// The window surface and what depends on its size.
 struct Target {
     surface: wgpu::Surface<'static>,
     config: wgpu::SurfaceConfiguration,
+    targets: Targets,
+}
+
+/// The game: assets (loaded once, at start), the session, and — once there is a GPU — its
+/// pipelines for the surface format.
+pub struct Game {
+    pub assets: SceneAssets,
+    pub session: Session,
+    /// Where the session persists its settings (also written on SaveState).
+    pub settings_path: Option<PathBuf>,
+    /// Whether SaveState writes the settings: false when an intent extra overrode the
+    /// shading model for this run only (the player's saved choice is kept).
+    pub save_settings_on_save_state: bool,
+    gpu: Option<(GameGpu, wgpu::TextureFormat)>,
+}
+
+impl Game {
+    pub fn new(assets: SceneAssets, session: Session, settings_path: Option<PathBuf>) -> Self {
+        Game {
+            assets,
+            session,
+            settings_path,
+            save_settings_on_save_state: true,
+            gpu: None,
+        }
+    }
+
+    /// Whether the game is anywhere but the main screen.
+    pub fn in_play(&self) -> bool {
+        self.session.game.screen() != Screen::Main
+    }
+
+    pub fn to_main(&mut self) {
+        self.session.game.to_main();
+    }
+
+    pub fn key(&mut self, key: Key) {
+        self.session.key(key);
+    }
+
+    /// Writes the settings file now (SaveState); the session also saves on every change.
+    pub fn save_settings(&self) {
+        let Some(path) = &self.settings_path else {
+            return;
+        };
+        if !self.save_settings_on_save_state {
+            log::info!("SaveState: settings not rewritten (shading overridden by the intent)");
+            return;
+        }
+        match self.session.settings.save(path) {
+            Ok(()) => log::info!("SaveState: settings written to {}", path.display()),
+            Err(e) => log::warn!("SaveState: cannot write {}: {e}", path.display()),
+        }
+    }
 }
 
 pub struct Renderer {
     gpu: Option<Gpu>,
     target: Option<Target>,
-    start: Instant,
+    game: Option<Game>,
+    /// Display density / 160 (the UI's scale).
+    scale: f32,
+    last: Option<Instant>,
     frames: u64,
 }
 
-impl Default for Renderer {
-    fn default() -> Self {
-        Self::new()
-    }
-}
-
 impl Renderer {
-    pub fn new() -> Self {
+    /// `game` is `None` when the assets could not be loaded (the activity is finishing).
+    pub fn new(game: Option<Game>, scale: f32) -> Self {
         Renderer {
             gpu: None,
             target: None,
-            start: Instant::now(),
+            game,
+            scale,
+            last: None,
             frames: 0,
         }
     }
@@ -70,8 +125,28 @@ impl Renderer {
         self.target.is_some()
     }
 
-    /// Creates the surface for `window` (and, the first time, the instance, adapter and
-    /// device: Vulkan first, GLES when Vulkan gives no adapter that can present).
+    pub fn game(&self) -> Option<&Game> {
+        self.game.as_ref()
+    }
+
+    pub fn game_mut(&mut self) -> Option<&mut Game> {
+        self.game.as_mut()
+    }
+
+    pub fn set_scale(&mut self, scale: f32) {
+        if scale != self.scale {
+            log::info!("display scale {scale}");
+            self.scale = scale;
+        }
+    }
+
+    /// Forgets the last frame time (after a pause the game does not jump ahead).
+    pub fn reset_clock(&mut self) {
+        self.last = None;
+    }
+
+    /// Creates the surface for `window` (and, the first time, the GPU context — Vulkan first,
+    /// GLES when Vulkan gives no adapter that can present — and the game's pipelines).
     pub fn create_surface(
         &mut self,
         window: NativeWindow,
@@ -79,6 +154,9 @@ impl Renderer {
         height: u32,
     ) -> Result<(), String> {
         self.drop_surface();
+        let Some(game) = &mut self.game else {
+            return Err("no game (the assets did not load)".into());
+        };
         let surface = match &self.gpu {
             Some(gpu) => gpu
                 .instance
@@ -95,8 +173,13 @@ impl Renderer {
             .get_default_config(&gpu.adapter, width.max(1), height.max(1))
             .ok_or("the surface is not supported by the adapter")?;
         let caps = surface.get_capabilities(&gpu.adapter);
-        if let Some(srgb) = caps.formats.iter().find(|f| f.is_srgb()) {
-            config.format = *srgb;
+        // Keep the pipelines' format when this surface offers it; else prefer sRGB.
+        let previous = game.gpu.as_ref().map(|(_, f)| *f);
+        if let Some(format) = previous
+            .filter(|f| caps.formats.contains(f))
+            .or_else(|| caps.formats.iter().copied().find(|f| f.is_srgb()))
+        {
+            config.format = format;
         }
         config.present_mode = wgpu::PresentMode::Fifo;
         config.desired_maximum_frame_latency = 2;
@@ -108,7 +191,23 @@ impl Renderer {
             config.format,
             config.alpha_mode
         );
-        self.target = Some(Target { surface, config });
+        if previous != Some(config.format) {
+            let t0 = Instant::now();
+            let gg = GameGpu::new(gpu, config.format, &game.assets)
+                .map_err(|e| format!("game GPU setup: {e}"))?;
+            log::info!(
+                "pipelines and scene uploaded for {:?} in {} ms",
+                config.format,
+                t0.elapsed().as_millis()
+            );
+            game.gpu = Some((gg, config.format));
+        }
+        let targets = Targets::new(&gpu.device, config.format, config.width, config.height);
+        self.target = Some(Target {
+            surface,
+            config,
+            targets,
+        });
         Ok(())
     }
 
@@ -128,12 +227,18 @@ impl Renderer {
         t.config.width = width;
         t.config.height = height;
         t.surface.configure(&gpu.device, &t.config);
+        t.targets
+            .ensure(&gpu.device, t.config.format, width, height);
         log::info!("surface reconfigured: {width}x{height}");
     }
 
-    /// Draws and presents one frame.
+    /// Advances the game and draws and presents one frame.
     pub fn draw(&mut self) -> FrameStatus {
-        let (Some(gpu), Some(t)) = (&self.gpu, &self.target) else {
+        let (Some(gpu), Some(t), Some(game)) = (&self.gpu, &mut self.target, &mut self.game)
+        else {
+            return FrameStatus::Occluded;
+        };
+        let Some((gg, _)) = &mut game.gpu else {
             return FrameStatus::Occluded;
         };
         let (frame, status) = match t.surface.get_current_texture() {
@@ -145,44 +250,46 @@ impl Renderer {
             wgpu::CurrentSurfaceTexture::Lost => return FrameStatus::Lost,
             wgpu::CurrentSurfaceTexture::Validation => return FrameStatus::Validation,
         };
+        let now = Instant::now();
+        let dt = self
+            .last
+            .map_or(1.0 / 60.0, |l| (now - l).as_secs_f32().min(0.1));
+        self.last = Some(now);
+        let (width, height) = (frame.texture.width(), frame.texture.height());
+        t.targets.ensure(&gpu.device, t.config.format, width, height);
+        let viewport = Viewport {
+            width,
+            height,
+            scale: self.scale,
+            insets: Insets::default(),
+        };
+        let info = game
+            .session
+            .update(dt, &game.assets.character, viewport);
+        if info.shading_changed {
+            log::info!("shading model: {}", game.session.shading().name());
+        }
+        gg.upload(&gpu.queue, &mut game.session, &game.assets.character);
         let view = frame
             .texture
             .create_view(&wgpu::TextureViewDescriptor::default());
-        let t_s = self.start.elapsed().as_secs_f64();
-        let c = |phase: f64| 0.25 + 0.2 * (t_s * 0.5 + phase).sin();
         let mut enc = gpu
             .device
             .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                label: Some("clear"),
+                label: Some("frame"),
             });
-        {
-            let _pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("clear"),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: &view,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(wgpu::Color {
-                            r: c(0.0),
-                            g: c(2.1),
-                            b: c(4.2),
-                            a: 1.0,
-                        }),
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
-                depth_stencil_attachment: None,
-                timestamp_writes: None,
-                occlusion_query_set: None,
-                multiview_mask: None,
-            });
-        }
+        gg.encode(&mut enc, &t.targets, &view, &game.session);
         gpu.queue.submit([enc.finish()]);
         gpu.queue.present(frame);
         self.frames += 1;
-        if self.frames.is_multiple_of(600) {
-            log::info!("{} frames presented", self.frames);
+        if self.frames.is_multiple_of(3600) {
+            log::info!(
+                "{} frames presented; screen {:?}, score {}, best {}",
+                self.frames,
+                game.session.game.screen(),
+                game.session.game.score(),
+                game.session.game.best()
+            );
         }
         status
     }
@@ -201,50 +308,24 @@ fn init_gpu(window: NativeWindow) -> Result<(Gpu, wgpu::Surface<'static>), Strin
                 continue;
             }
         };
-        let adapter =
-            match pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
-                power_preference: wgpu::PowerPreference::HighPerformance,
-                force_fallback_adapter: false,
-                compatible_surface: Some(&surface),
-                apply_limit_buckets: false,
-            })) {
-                Ok(a) => a,
-                Err(e) => {
-                    errors.push(format!("{backends:?}: request_adapter: {e}"));
-                    continue;
-                }
-            };
-        let info = adapter.get_info();
-        log::info!(
-            "adapter: {} ({:?}, {:?}) driver {} {}",
-            info.name,
-            info.backend,
-            info.device_type,
-            info.driver,
-            info.driver_info
-        );
-        let device = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
-            label: Some("dermis"),
-            required_features: wgpu::Features::empty(),
-            required_limits: adapter.limits(),
-            ..Default::default()
-        }));
-        match device {
-            Ok((device, queue)) => {
-                device.on_uncaptured_error(std::sync::Arc::new(|e| {
+        match pollster::block_on(Gpu::from_instance(instance, Some(&surface))) {
+            Ok(gpu) => {
+                let info = gpu.adapter.get_info();
+                log::info!(
+                    "GPU: {} ({:?}, {:?}) driver {} {}; timestamps {}",
+                    info.name,
+                    info.backend,
+                    info.device_type,
+                    info.driver,
+                    info.driver_info,
+                    gpu.timestamps
+                );
+                gpu.device.on_uncaptured_error(std::sync::Arc::new(|e| {
                     log::error!("wgpu error: {e}");
                 }));
-                return Ok((
-                    Gpu {
-                        instance,
-                        adapter,
-                        device,
-                        queue,
-                    },
-                    surface,
-                ));
+                return Ok((gpu, surface));
             }
-            Err(e) => errors.push(format!("{backends:?}: request_device: {e}")),
+            Err(e) => errors.push(format!("{backends:?}: {e}")),
         }
     }
     Err(format!("no usable GPU: {}", errors.join("; ")))
