@@ -1,11 +1,15 @@
-//! Platform glue: `android_main`, logging, the event loop. Translates android-activity's
-//! events into [`lifecycle`](crate::lifecycle) events and performs the actions on the
-//! [`Renderer`](crate::app::Renderer).
+//! Platform glue: `android_main`, logging, start-up (assets, intent extras, settings), the
+//! event loop and input. Translates android-activity's events into
+//! [`lifecycle`](crate::lifecycle) events and performs the actions on the
+//! [`Renderer`](crate::app::Renderer); touches and keys go to the game's session.
 
-use crate::app::Renderer;
-use crate::lifecycle::{Action, Event, Lifecycle};
-use android_activity::input::{InputEvent, KeyAction, Keycode};
+use crate::app::{Game, Renderer};
+use crate::lifecycle::{self, Action, Event, Lifecycle};
+use android_activity::input::{InputEvent, KeyAction, Keycode, MotionAction};
 use android_activity::{AndroidApp, InputStatus, MainEvent, PollEvent, WindowManagerFlags};
+use dermis_core::game::{Key, Session};
+use dermis_core::shading::ShadingModel;
+use std::time::Instant;
 
 /// Entry point called by android-activity on its own thread.
 #[no_mangle]
@@ -27,7 +31,12 @@ fn android_main(app: AndroidApp) {
     );
 
     let mut lc = Lifecycle::new();
-    let mut renderer = Renderer::new();
+    let mut renderer = Renderer::new(load_game(&app), display_scale(&app));
+    if renderer.game().is_none() {
+        // Nothing to show: leave through the normal lifecycle (events until Destroy).
+        finish(&app);
+    }
+    let mut pointer = Pointer::default();
     let mut exit = false;
     while !exit {
         app.poll_events(lc.poll_timeout(), |event| {
@@ -45,10 +54,23 @@ fn android_main(app: AndroidApp) {
                     Event::Resume
                 }
                 MainEvent::SaveState { saver, .. } => {
+                    sync_screen(&mut lc, &renderer);
                     saver.store(&lc.save());
+                    if let Some(game) = renderer.game() {
+                        game.save_settings();
+                        log::info!(
+                            "SaveState: screen {:?}, seed {}, best {}",
+                            game.session.game.screen(),
+                            game.session.game.seed(),
+                            game.session.game.best()
+                        );
+                    }
                     return;
                 }
-                MainEvent::Pause => Event::Pause,
+                MainEvent::Pause => {
+                    renderer.reset_clock();
+                    Event::Pause
+                }
                 MainEvent::Stop => Event::Stop,
                 MainEvent::GainedFocus => Event::GainedFocus,
                 MainEvent::LostFocus => Event::LostFocus,
@@ -57,9 +79,12 @@ fn android_main(app: AndroidApp) {
                     Event::InitWindow { width, height }
                 }
                 MainEvent::TerminateWindow { .. } => Event::TermWindow,
-                MainEvent::WindowResized { .. }
-                | MainEvent::ConfigChanged { .. }
-                | MainEvent::ContentRectChanged { .. } => {
+                MainEvent::ConfigChanged { .. } => {
+                    renderer.set_scale(display_scale(&app));
+                    let (width, height) = window_size(&app);
+                    Event::Resized { width, height }
+                }
+                MainEvent::WindowResized { .. } | MainEvent::ContentRectChanged { .. } => {
                     let (width, height) = window_size(&app);
                     Event::Resized { width, height }
                 }
@@ -78,7 +103,7 @@ fn android_main(app: AndroidApp) {
             }
         });
 
-        handle_input(&app, &mut lc, &mut renderer, &mut exit);
+        handle_input(&app, &mut lc, &mut renderer, &mut pointer, &mut exit);
 
         if lc.should_render() && renderer.has_surface() {
             let status = renderer.draw();
@@ -98,6 +123,92 @@ fn window_size(app: &AndroidApp) -> (u32, u32) {
     })
 }
 
+/// Display density / 160 (1 when unknown).
+fn display_scale(app: &AndroidApp) -> f32 {
+    match app.config().density() {
+        Some(dpi) if dpi > 0 && dpi < 0xfffe => dpi as f32 / 160.0,
+        _ => 1.0,
+    }
+}
+
+/// Loads the assets (all of them, now), reads the intent extras and builds the session with
+/// the settings file in the app's internal data directory.
+fn load_game(app: &AndroidApp) -> Option<Game> {
+    let t0 = Instant::now();
+    let assets = match crate::assets::load(&app.asset_manager()) {
+        Ok(a) => a,
+        Err(e) => {
+            log::error!("cannot load the assets: {e}; finishing");
+            return None;
+        }
+    };
+    log::info!(
+        "assets loaded in {} ms ({} props)",
+        t0.elapsed().as_millis(),
+        assets.props.len()
+    );
+    let extras = crate::intent::read(app);
+    log::info!("intent extras: {extras:?}");
+    let settings_path = app.internal_data_path().map(|d| d.join("settings.txt"));
+    if settings_path.is_none() {
+        log::warn!("no internal data path: settings are not persisted");
+    }
+    let seed = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(1, |d| d.as_nanos() as u64);
+    let session = Session::new(
+        &assets.character,
+        seed,
+        settings_path.clone(),
+        extras.autoplay,
+    );
+    let mut game = Game::new(assets, session, settings_path);
+    if let Some(name) = &extras.shading {
+        match ShadingModel::from_name(name) {
+            Some(model) => {
+                game.session.settings.set_shading_model(model);
+                game.save_settings_on_save_state = false;
+            }
+            None => log::warn!(
+                "intent extra shading={name:?} is not a model (known: {}); ignored",
+                ShadingModel::names()
+            ),
+        }
+    }
+    log::info!(
+        "settings: shading {}{}, best {}, autoplay {}, seed {seed}, file {}",
+        game.session.shading().name(),
+        if extras.shading.is_some() && !game.save_settings_on_save_state {
+            " (from the intent)"
+        } else {
+            ""
+        },
+        game.session.settings.best,
+        extras.autoplay,
+        game.settings_path
+            .as_deref()
+            .map_or("<none>".into(), |p| p.display().to_string())
+    );
+    Some(game)
+}
+
+fn finish(app: &AndroidApp) {
+    // SAFETY: the activity pointer is valid until Destroy, which has not been seen yet;
+    // ANativeActivity_finish may be called from any thread.
+    unsafe { android_activity::ndk_sys::ANativeActivity_finish(app.activity_as_ptr().cast()) };
+}
+
+/// Tells the lifecycle which screen the game shows (the game decides what back does).
+fn sync_screen(lc: &mut Lifecycle, renderer: &Renderer) {
+    if let Some(game) = renderer.game() {
+        lc.set_screen(if game.in_play() {
+            lifecycle::Screen::Play
+        } else {
+            lifecycle::Screen::Main
+        });
+    }
+}
+
 /// Performs one lifecycle action; returns whether to leave the loop.
 fn perform(app: &AndroidApp, renderer: &mut Renderer, action: Action) -> bool {
     match action {
@@ -113,21 +224,34 @@ fn perform(app: &AndroidApp, renderer: &mut Renderer, action: Action) -> bool {
         }
         Action::DropSurface => renderer.drop_surface(),
         Action::Reconfigure { width, height } => renderer.reconfigure(width, height),
-        Action::LeavePlay => log::info!("back: leaving play for the main screen"),
+        Action::LeavePlay => {
+            log::info!("back: leaving play for the main screen");
+            if let Some(game) = renderer.game_mut() {
+                game.leave_play();
+            }
+        }
         Action::Finish => {
             log::info!("back on the main screen: finishing the activity");
-            // SAFETY: the activity pointer is valid until Destroy, which has not been seen
-            // yet; ANativeActivity_finish may be called from any thread.
-            unsafe {
-                android_activity::ndk_sys::ANativeActivity_finish(app.activity_as_ptr().cast())
-            };
+            finish(app);
         }
         Action::Exit => return true,
     }
     false
 }
 
-fn handle_input(app: &AndroidApp, lc: &mut Lifecycle, renderer: &mut Renderer, exit: &mut bool) {
+/// The first pointer of the current touch (its id), as android-activity reports it.
+#[derive(Default)]
+struct Pointer {
+    id: Option<i32>,
+}
+
+fn handle_input(
+    app: &AndroidApp,
+    lc: &mut Lifecycle,
+    renderer: &mut Renderer,
+    pointer: &mut Pointer,
+    exit: &mut bool,
+) {
     let mut iter = match app.input_events_iter() {
         Ok(iter) => iter,
         Err(e) => {
@@ -139,10 +263,52 @@ fn handle_input(app: &AndroidApp, lc: &mut Lifecycle, renderer: &mut Renderer, e
     while iter.next(|event| match event {
         InputEvent::KeyEvent(key) if key.key_code() == Keycode::Back => {
             if key.action() == KeyAction::Up {
+                sync_screen(lc, renderer);
                 actions.extend(lc.handle(Event::Back));
             }
             // Handled on down and up: the system's default back would finish the activity
             // even while playing.
+            InputStatus::Handled
+        }
+        InputEvent::KeyEvent(key) => {
+            let game_key = match key.key_code() {
+                Keycode::DpadLeft | Keycode::A => Key::Left,
+                Keycode::DpadRight | Keycode::D => Key::Right,
+                Keycode::DpadUp
+                | Keycode::W
+                | Keycode::Space
+                | Keycode::Enter
+                | Keycode::DpadCenter
+                | Keycode::ButtonA => Key::Jump,
+                Keycode::M => Key::NextModel,
+                _ => return InputStatus::Unhandled,
+            };
+            if key.action() == KeyAction::Down && key.repeat_count() == 0 {
+                if let Some(game) = renderer.game_mut() {
+                    game.key(game_key);
+                }
+            }
+            InputStatus::Handled
+        }
+        InputEvent::MotionEvent(motion) => {
+            let Some(game) = renderer.game_mut() else {
+                return InputStatus::Unhandled;
+            };
+            // The pointer this event is about (for Down / Up: the only one).
+            let p = motion.pointer_at_index(motion.pointer_index());
+            let id = p.pointer_id();
+            match motion.action() {
+                MotionAction::Down => {
+                    pointer.id = Some(id);
+                    game.session.pointer_down(p.x(), p.y());
+                }
+                MotionAction::Up | MotionAction::PointerUp if pointer.id == Some(id) => {
+                    pointer.id = None;
+                    game.session.pointer_up(p.x(), p.y());
+                }
+                MotionAction::Cancel => pointer.id = None,
+                _ => {}
+            }
             InputStatus::Handled
         }
         _ => InputStatus::Unhandled,

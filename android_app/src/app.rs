@@ -74,7 +74,7 @@ impl Game {
         self.session.game.screen() != Screen::Main
     }
 
-    pub fn to_main(&mut self) {
+    pub fn leave_play(&mut self) {
         self.session.game.to_main();
     }
 
@@ -234,8 +234,7 @@ impl Renderer {
 
     /// Advances the game and draws and presents one frame.
     pub fn draw(&mut self) -> FrameStatus {
-        let (Some(gpu), Some(t), Some(game)) = (&self.gpu, &mut self.target, &mut self.game)
-        else {
+        let (Some(gpu), Some(t), Some(game)) = (&self.gpu, &mut self.target, &mut self.game) else {
             return FrameStatus::Occluded;
         };
         let Some((gg, _)) = &mut game.gpu else {
@@ -256,16 +255,15 @@ impl Renderer {
             .map_or(1.0 / 60.0, |l| (now - l).as_secs_f32().min(0.1));
         self.last = Some(now);
         let (width, height) = (frame.texture.width(), frame.texture.height());
-        t.targets.ensure(&gpu.device, t.config.format, width, height);
+        t.targets
+            .ensure(&gpu.device, t.config.format, width, height);
         let viewport = Viewport {
             width,
             height,
             scale: self.scale,
             insets: Insets::default(),
         };
-        let info = game
-            .session
-            .update(dt, &game.assets.character, viewport);
+        let info = game.session.update(dt, &game.assets.character, viewport);
         if info.shading_changed {
             log::info!("shading model: {}", game.session.shading().name());
         }

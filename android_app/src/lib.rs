@@ -11,3 +11,7 @@ pub mod lifecycle;
 mod android;
 #[cfg(target_os = "android")]
 mod app;
+#[cfg(target_os = "android")]
+mod assets;
+#[cfg(target_os = "android")]
+mod intent;

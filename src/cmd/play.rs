@@ -73,6 +73,7 @@ pub fn run(args: PlayArgs) -> Result<(), String> {
     let mut dermis_allocs = Vec::with_capacity(args.frames as usize);
     let mut wgpu_allocs = Vec::with_capacity(args.frames as usize);
     let mut draw_calls = 0;
+    let mut uploads = Vec::with_capacity(args.frames as usize);
     let mut max_ticks = 0;
     let mut live_warm = None;
     let mut live_changes = 0u64;
@@ -84,6 +85,7 @@ pub fn run(args: PlayArgs) -> Result<(), String> {
         let info = session.update(dt, &assets.character, viewport);
         let a1 = allocations();
         gg.upload(&gpu.queue, &mut session, &assets.character);
+        uploads.push(session.uploads as f64);
         let mut encoder = gpu
             .device
             .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
@@ -145,6 +147,7 @@ pub fn run(args: PlayArgs) -> Result<(), String> {
         "dermis_allocations_per_frame": d.iter().copied().fold(0.0, f64::max),
         "wgpu_allocations_per_frame": {"median": median(&wg), "max": wg.iter().copied().fold(0.0, f64::max)},
         "ui_rebuilds": session.ui.rebuilds(),
+        "buffer_uploads_per_frame": {"median": median(&steady(&uploads)), "max": steady(&uploads).iter().copied().fold(0.0, f64::max)},
         "draw_calls_per_frame": draw_calls,
         "cpu_frame_ms": {"p50": percentile(&cpu, 0.5), "p95": percentile(&cpu, 0.95), "p99": percentile(&cpu, 0.99)},
         "gpu_objects_live_after_warm_up": live_warm,

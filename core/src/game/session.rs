@@ -60,6 +60,11 @@ pub struct Session {
     pending: Input,
     pointer_down: Option<(f32, f32)>,
     viewport: Viewport,
+    /// Whether the character's bounding sphere is inside the view this frame; when it is not,
+    /// it is neither animated nor uploaded.
+    pub character_visible: bool,
+    /// Buffer uploads (`write_buffer` calls) made by the last [`Session::upload`].
+    pub uploads: u32,
 }
 
 impl Session {
@@ -97,7 +102,29 @@ impl Session {
                 scale: 1.0,
                 insets: Insets::default(),
             },
+            character_visible: true,
+            uploads: 0,
         }
+    }
+
+    /// Whether a sphere (centre, radius) is inside the camera's view for `aspect`.
+    pub fn sphere_visible(&self, center: Vec3, radius: f32, aspect: f32) -> bool {
+        let m = self.camera.view_proj(aspect);
+        // Gribb–Hartmann planes from the rows of the clip matrix (depth 0..1).
+        let r = [m.row(0), m.row(1), m.row(2), m.row(3)];
+        let planes = [
+            r[3] + r[0],
+            r[3] - r[0],
+            r[3] + r[1],
+            r[3] - r[1],
+            r[2],
+            r[3] - r[2],
+        ];
+        planes.iter().all(|p| {
+            let n = p.truncate();
+            let len = n.length().max(1e-12);
+            (n.dot(center) + p.w) / len >= -radius
+        })
     }
 
     /// The shading model the player chose.
@@ -158,27 +185,6 @@ impl Session {
             }
             None => self.game.update(dt, &input),
         };
-        // Animation: crossfade the two clips the game asks for.
-        self.pose.reset(character);
-        let anim = self.game.anim_state();
-        let mut first = true;
-        for (k, &(clip, weight)) in anim.blend.iter().enumerate() {
-            let Some(c) = character.animations.get(clip) else {
-                continue;
-            };
-            let t = if c.duration > 0.0 {
-                anim.time[k] % c.duration
-            } else {
-                0.0
-            };
-            if first {
-                self.pose.apply_clip(c, t);
-                first = false;
-            } else if weight > 0.0 {
-                self.pose.blend_clip(c, t, weight);
-            }
-        }
-        self.pose.update_world(character);
         let (target, yaw) = self.game.camera_target();
         let (feet, _) = self.game.player_transform();
         let capsule = Capsule {
@@ -187,6 +193,11 @@ impl Session {
             radius: 0.4,
         };
         self.camera.update(dt, target, yaw, &capsule);
+        let aspect = viewport.width as f32 / viewport.height.max(1) as f32;
+        self.character_visible = self.sphere_visible(feet + Vec3::Y * 0.9, 1.2, aspect);
+        if self.character_visible {
+            self.animate(character);
+        }
         self.light.position = feet + Vec3::new(1.5, 3.0, 2.5);
         self.game.props(&mut self.props);
         // UI.
@@ -211,6 +222,30 @@ impl Session {
         }
     }
 
+    /// Crossfades the two clips the game asks for into the pose.
+    fn animate(&mut self, character: &Model) {
+        self.pose.reset(character);
+        let anim = self.game.anim_state();
+        let mut first = true;
+        for (k, &(clip, weight)) in anim.blend.iter().enumerate() {
+            let Some(c) = character.animations.get(clip) else {
+                continue;
+            };
+            let t = if c.duration > 0.0 {
+                anim.time[k] % c.duration
+            } else {
+                0.0
+            };
+            if first {
+                self.pose.apply_clip(c, t);
+                first = false;
+            } else if weight > 0.0 {
+                self.pose.blend_clip(c, t, weight);
+            }
+        }
+        self.pose.update_world(character);
+    }
+
     /// Writes this frame's GPU data: joint palettes, frame uniform, props, UI (if changed).
     pub fn upload(
         &mut self,
@@ -220,7 +255,11 @@ impl Session {
         character: &Model,
     ) {
         let aspect = self.viewport.width as f32 / self.viewport.height.max(1) as f32;
-        renderer.update_character(queue, character, &self.pose, self.game.player_matrix());
+        self.uploads = 1;
+        if self.character_visible {
+            renderer.update_character(queue, character, &self.pose, self.game.player_matrix());
+            self.uploads += 1;
+        }
         renderer.prepare(
             queue,
             &FrameView {
@@ -230,11 +269,12 @@ impl Session {
                 exposure: EXPOSURE,
             },
         );
-        renderer.set_props(queue, &self.props);
+        self.uploads += renderer.set_props(queue, &self.props);
         ui.resize(queue, self.viewport.width, self.viewport.height);
         if self.ui.needs_upload() {
             ui.upload(queue, self.ui.vertices());
             self.ui.mark_uploaded();
+            self.uploads += 1;
         }
     }
 
@@ -244,5 +284,32 @@ impl Session {
             character: true,
             props: true,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_player_is_visible_and_things_behind_the_camera_are_not() {
+        let model = crate::flat::plane_model(0.5, 0.01);
+        let mut s = Session::new(&model, 1, None, true);
+        let vp = Viewport {
+            width: 640,
+            height: 360,
+            scale: 1.0,
+            insets: Insets::default(),
+        };
+        for _ in 0..30 {
+            s.update(1.0 / 60.0, &model, vp);
+        }
+        assert!(s.character_visible);
+        let (feet, _) = s.game.player_transform();
+        assert!(s.sphere_visible(feet + Vec3::Y, 1.0, 16.0 / 9.0));
+        // 50 m behind the camera, and far to the side: culled, so neither animated nor uploaded.
+        let eye = s.camera.eye.value;
+        assert!(!s.sphere_visible(eye - Vec3::Z * 50.0, 1.2, 16.0 / 9.0));
+        assert!(!s.sphere_visible(eye + Vec3::X * 500.0, 1.2, 16.0 / 9.0));
     }
 }

@@ -56,6 +56,9 @@ pub(super) struct PropGpu {
     pub kind: PropKind,
     parts: Vec<Part>,
     instances: wgpu::Buffer,
+    /// What the instance buffer holds now (capacity reserved once): unchanged lists are not
+    /// uploaded again.
+    uploaded: Vec<[[f32; 4]; 4]>,
     capacity: u32,
     pub count: u32,
     pub triangles: u32,
@@ -132,19 +135,27 @@ impl PropGpu {
             kind,
             parts,
             instances,
+            uploaded: Vec::with_capacity(MAX_INSTANCES as usize),
             capacity: MAX_INSTANCES,
             count: 0,
             triangles,
         }
     }
 
-    /// Uploads this kind's instance matrices (at most `MAX_INSTANCES`).
-    pub fn set_instances(&mut self, queue: &wgpu::Queue, matrices: &[[[f32; 4]; 4]]) {
+    /// Sets this kind's instance matrices (at most `MAX_INSTANCES`); uploads only when they
+    /// changed. Returns whether it uploaded.
+    pub fn set_instances(&mut self, queue: &wgpu::Queue, matrices: &[[[f32; 4]; 4]]) -> bool {
         let n = matrices.len().min(self.capacity as usize);
+        self.count = n as u32;
+        if self.uploaded[..] == matrices[..n] {
+            return false;
+        }
+        self.uploaded.clear();
+        self.uploaded.extend_from_slice(&matrices[..n]);
         if n > 0 {
             queue.write_buffer(&self.instances, 0, bytemuck::cast_slice(&matrices[..n]));
         }
-        self.count = n as u32;
+        true
     }
 
     pub fn draw<'p>(&'p self, pass: &mut wgpu::RenderPass<'p>) -> u32 {

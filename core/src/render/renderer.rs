@@ -136,7 +136,10 @@ impl Renderer {
     }
 
     /// Replaces the placed props.
-    pub fn set_props(&mut self, queue: &wgpu::Queue, instances: &[PropInstance]) {
+    /// Places the props; a kind whose instances did not change is not uploaded again.
+    /// Returns the number of buffer uploads made.
+    pub fn set_props(&mut self, queue: &wgpu::Queue, instances: &[PropInstance]) -> u32 {
+        let mut uploads = 0;
         for prop in &mut self.props {
             self.scratch.clear();
             self.scratch.extend(
@@ -145,8 +148,9 @@ impl Renderer {
                     .filter(|i| i.kind == prop.kind)
                     .map(|i| i.transform.to_cols_array_2d()),
             );
-            prop.set_instances(queue, &self.scratch);
+            uploads += u32::from(prop.set_instances(queue, &self.scratch));
         }
+        uploads
     }
 
     /// Uploads the character's joint palettes for `pose`, placed at `world`.
