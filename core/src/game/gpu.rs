@@ -3,7 +3,7 @@
 
 use super::Session;
 use crate::asset::Model;
-use crate::render::{Gpu, RenderStats, Renderer, Targets, UiRenderer, MSAA_SAMPLES};
+use crate::render::{Gpu, PipelineSet, RenderStats, Renderer, Targets, UiRenderer, MSAA_SAMPLES};
 use crate::scene::SceneAssets;
 use crate::shading::material::SKIN1;
 
@@ -18,7 +18,8 @@ impl GameGpu {
         format: wgpu::TextureFormat,
         assets: &SceneAssets,
     ) -> Result<Self, String> {
-        let mut renderer = Renderer::new(gpu, format);
+        // Only what the game can reach: every menu model (the governor's tiers are among them).
+        let mut renderer = Renderer::with_pipelines(gpu, format, &PipelineSet::game());
         renderer.load_character(gpu, &assets.character, &SKIN1)?;
         for (kind, model) in &assets.props {
             renderer.load_prop(gpu, *kind, model);

@@ -23,7 +23,7 @@ pub use counters::LiveObjects;
 pub use frame::{FrameUniform, Light};
 pub use gpu::{Gpu, GpuError};
 pub use offscreen::{f16_to_f32, Offscreen, RgbaImage, OFFSCREEN_FORMAT};
-pub use pipelines::{build_shader_source, CharacterPipelines};
+pub use pipelines::{build_shader_source, CharacterPipelines, PipelineSet};
 pub use props::{PropInstance, PropKind};
 pub use renderer::{DrawSet, FrameView, RenderStats, Renderer};
 pub use targets::{Targets, DEPTH_FORMAT, MSAA_SAMPLES};

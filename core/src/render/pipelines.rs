@@ -12,20 +12,59 @@ pub fn build_shader_source(model: ShadingModel) -> String {
     compose("character", &model.defs()).expect("built-in shaders compose (checked by tests)")
 }
 
-/// A character pipeline for every registry model, plus the unlit baseline.
+/// Which character pipelines to build: the shading models a scene can reach (its materials ×
+/// every tier the governor or the menu can select) and, for benches only, the unlit
+/// baseline. Nothing else is compiled, so no pass or pipeline exists for an effect that no
+/// material uses. Props always get the plain default-lit pipeline.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct PipelineSet {
+    pub models: Vec<ShadingModel>,
+    pub unlit: bool,
+}
+
+impl PipelineSet {
+    /// Every registry model plus the unlit baseline (tools and benches).
+    pub fn everything() -> Self {
+        Self {
+            models: ShadingModel::ALL.to_vec(),
+            unlit: true,
+        }
+    }
+
+    /// The runner game: its menu can select every registry model, the governor's tiers are
+    /// among them; no unlit baseline.
+    pub fn game() -> Self {
+        Self {
+            models: ShadingModel::ALL.to_vec(),
+            unlit: false,
+        }
+    }
+}
+
+/// A character pipeline for each requested model, plus the unlit baseline if requested.
 pub struct CharacterPipelines {
     pub models: Vec<(ShadingModel, wgpu::RenderPipeline)>,
-    pub unlit: wgpu::RenderPipeline,
+    pub unlit: Option<wgpu::RenderPipeline>,
 }
 
 impl CharacterPipelines {
-    pub fn get(&self, model: ShadingModel) -> &wgpu::RenderPipeline {
-        &self
-            .models
-            .iter()
-            .find(|(m, _)| *m == model)
-            .expect("every registry model has a pipeline")
-            .1
+    pub fn get(&self, model: Option<ShadingModel>) -> Option<&wgpu::RenderPipeline> {
+        match model {
+            Some(model) => self
+                .models
+                .iter()
+                .find(|(m, _)| *m == model)
+                .map(|(_, p)| p),
+            None => self.unlit.as_ref(),
+        }
+    }
+
+    /// What was built.
+    pub fn built(&self) -> PipelineSet {
+        PipelineSet {
+            models: self.models.iter().map(|(m, _)| *m).collect(),
+            unlit: self.unlit.is_some(),
+        }
     }
 }
 
@@ -35,7 +74,12 @@ pub struct Pipelines {
 }
 
 impl Pipelines {
-    pub fn new(device: &wgpu::Device, layouts: &Layouts, format: wgpu::TextureFormat) -> Self {
+    pub fn new(
+        device: &wgpu::Device,
+        layouts: &Layouts,
+        format: wgpu::TextureFormat,
+        set: &PipelineSet,
+    ) -> Self {
         let character_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("character"),
             bind_group_layouts: &[
@@ -64,16 +108,19 @@ impl Pipelines {
                 label,
             )
         };
-        let models = ShadingModel::ALL
+        let models = set
+            .models
             .iter()
             .map(|&m| (m, character(m.name(), build_shader_source(m))))
             .collect();
-        let unlit_src = compose(
-            "character",
-            &ShaderDefs::new().alias("shading_model", "unlit"),
-        )
-        .expect("built-in shaders compose");
-        let unlit = character("unlit", unlit_src);
+        let unlit = set.unlit.then(|| {
+            let src = compose(
+                "character",
+                &ShaderDefs::new().alias("shading_model", "unlit"),
+            )
+            .expect("built-in shaders compose");
+            character("unlit", src)
+        });
         let prop_src = compose("prop", &ShaderDefs::new()).expect("built-in shaders compose");
         let prop_module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("prop"),

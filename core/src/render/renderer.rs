@@ -5,7 +5,7 @@ use glam::{Mat4, Vec3};
 use super::character::CharacterGpu;
 use super::frame::{FrameUniform, Light};
 use super::layouts::Layouts;
-use super::pipelines::Pipelines;
+use super::pipelines::{PipelineSet, Pipelines};
 use super::props::{PropGpu, PropInstance, PropKind, MAX_INSTANCES};
 use super::targets::Targets;
 use super::timer::PassTimer;
@@ -57,9 +57,14 @@ pub struct Renderer {
 impl Renderer {
     /// Builds every pipeline (all shading models) for `format`.
     pub fn new(gpu: &Gpu, format: wgpu::TextureFormat) -> Self {
+        Self::with_pipelines(gpu, format, &PipelineSet::everything())
+    }
+
+    /// A renderer that builds only the character pipelines in `set`.
+    pub fn with_pipelines(gpu: &Gpu, format: wgpu::TextureFormat, set: &PipelineSet) -> Self {
         let device = &gpu.device;
         let layouts = Layouts::new(device);
-        let pipelines = Pipelines::new(device, &layouts, format);
+        let pipelines = Pipelines::new(device, &layouts, format, set);
         let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("trilinear"),
             address_mode_u: wgpu::AddressMode::Repeat,
@@ -184,6 +189,11 @@ impl Renderer {
         queue.write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(&u));
     }
 
+    /// The character pipelines that were built.
+    pub fn built_pipelines(&self) -> PipelineSet {
+        self.pipelines.character.built()
+    }
+
     pub fn character_triangles(&self) -> u32 {
         self.character.as_ref().map_or(0, |c| c.triangles)
     }
@@ -224,11 +234,9 @@ impl Renderer {
         });
         pass.set_bind_group(0, &self.frame_group, &[]);
         if draw.character {
-            if let Some(c) = &self.character {
-                let pipeline = match draw.shading {
-                    Some(m) => self.pipelines.character.get(m),
-                    None => &self.pipelines.character.unlit,
-                };
+            // A model outside the built set is not drawn (and never compiled at run time).
+            let pipeline = self.pipelines.character.get(draw.shading);
+            if let (Some(c), Some(pipeline)) = (&self.character, pipeline) {
                 pass.set_pipeline(pipeline);
                 pass.set_bind_group(1, c.params_group(draw.shading), &[]);
                 stats.draw_calls += c.draw(&mut pass);

@@ -1,8 +1,6 @@
 use std::collections::BTreeMap;
 use std::fmt;
 
-use super::sources::module_source;
-
 /// What a composition is parameterised by: flags for `#ifdef` and aliases for `#import`.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct ShaderDefs {
@@ -72,7 +70,17 @@ impl std::error::Error for ComposeError {}
 
 /// Composes module `entry` with its imports into one WGSL source.
 pub fn compose(entry: &str, defs: &ShaderDefs) -> Result<String, ComposeError> {
+    compose_from(super::MODULES, entry, defs)
+}
+
+/// Composes from an explicit module set (e.g. to prove a shader builds without some modules).
+pub fn compose_from(
+    modules: &[(&str, &str)],
+    entry: &str,
+    defs: &ShaderDefs,
+) -> Result<String, ComposeError> {
     let mut state = State {
+        modules,
         defs,
         out: String::new(),
         done: Vec::new(),
@@ -83,6 +91,7 @@ pub fn compose(entry: &str, defs: &ShaderDefs) -> Result<String, ComposeError> {
 }
 
 struct State<'a> {
+    modules: &'a [(&'a str, &'a str)],
     defs: &'a ShaderDefs,
     out: String,
     done: Vec<String>,
@@ -100,7 +109,12 @@ impl State<'_> {
             chain.push(resolved.to_string());
             return Err(ComposeError::ImportCycle(chain));
         }
-        let source = module_source(resolved).ok_or_else(|| ComposeError::UnknownModule {
+        let source = self
+            .modules
+            .iter()
+            .find(|(n, _)| *n == resolved)
+            .map(|(_, s)| *s);
+        let source = source.ok_or_else(|| ComposeError::UnknownModule {
             module: resolved.to_string(),
             imported_from: from.to_string(),
         })?;

@@ -15,5 +15,5 @@
 mod compose;
 mod sources;
 
-pub use compose::{compose, ComposeError, ShaderDefs};
+pub use compose::{compose, compose_from, ComposeError, ShaderDefs};
 pub use sources::{module_source, MODULES};
