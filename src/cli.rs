@@ -76,6 +76,12 @@ pub enum Command {
     },
     /// Total diffuse reflectance of every model next to a Monte Carlo reference.
     Sss(cmd::sss::SssArgs),
+    /// Self-test: create, present to and drop N window surfaces; print GPU object counts.
+    #[command(hide = true)]
+    Surfaces {
+        #[arg(long, default_value_t = 50)]
+        count: u32,
+    },
     /// Benchmarks that print numbers (JSON + a table).
     Bench(cmd::bench::BenchArgs),
     /// Play on autoplay for N seconds and report sustained frame time, pacing and memory.
@@ -109,6 +115,7 @@ pub fn run(cli: Cli) -> Result<(), String> {
         }
         Some(Command::Bench(args)) => cmd::bench::run(args),
         Some(Command::Sss(args)) => cmd::sss::run(args),
+        Some(Command::Surfaces { count }) => cmd::surfaces::run(count.clamp(1, 1000)),
         Some(Command::Soak(args)) => cmd::soak::run(args),
     }
 }

@@ -1,11 +1,12 @@
 //! dermis for Android: a native-activity `cdylib` (`libdermis_android.so`) built and packaged
 //! by `cargo xtask apk`.
 //!
-//! On other targets the crate is only the platform-free [`lifecycle`] state machine (so
+//! On other targets the crate is only the re-exported [`lifecycle`] state machine (so
 //! `cargo test` / `cargo clippy` on the host cover it); the Android glue and the GPU code are
 //! compiled for `target_os = "android"` only, since android-activity refuses other targets.
 
-pub mod lifecycle;
+/// The lifecycle state machine lives in the core (platform-free, tested on the desktop).
+pub use dermis_core::lifecycle;
 
 #[cfg(target_os = "android")]
 mod android;

@@ -11,6 +11,7 @@ pub mod camera;
 pub mod flat;
 pub mod game;
 pub mod governor;
+pub mod lifecycle;
 pub mod mc;
 pub mod pool;
 pub mod render;

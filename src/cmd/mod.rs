@@ -8,3 +8,4 @@ pub mod render;
 pub mod soak;
 pub mod sss;
 pub mod stats;
+pub mod surfaces;
