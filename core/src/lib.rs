@@ -18,5 +18,6 @@ pub mod render;
 pub mod scene;
 pub mod shader;
 pub mod shading;
+pub mod soak;
 pub mod still;
 pub mod ui;

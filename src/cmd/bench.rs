@@ -10,6 +10,7 @@ use dermis_core::shading::{material::SKIN1, ShadingModel};
 use dermis_core::still::{Shot, StillRenderer};
 use serde_json::json;
 
+use crate::cmd::gputime::{frame_close_up, time_models};
 use crate::cmd::stats::{median, percentile, ratio_ci};
 
 #[derive(clap::Args, Debug)]
@@ -79,28 +80,7 @@ fn frame(
         props: false,
         ..first
     };
-    let mut coverage = 0.0;
-    for fill in [1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 8.0] {
-        close.fill = fill;
-        let image = still.render(
-            &gpu,
-            &assets,
-            &Shot {
-                shading: Some(ShadingModel::Ward),
-                ..close
-            },
-        )?;
-        let bg = &image.pixels[0..3];
-        let covered = image
-            .pixels
-            .chunks_exact(4)
-            .filter(|p| (0..3).any(|k| p[k].abs_diff(bg[k]) > 3))
-            .count();
-        coverage = covered as f64 / (w * h) as f64;
-        if coverage >= 0.4 {
-            break;
-        }
-    }
+    let coverage = frame_close_up(&gpu, &mut still, &assets, &mut close, 0.4)?;
 
     // CPU per frame: animation + joint palettes + uniforms + command encoding.
     let model = &assets.character;
@@ -148,21 +128,11 @@ fn frame(
     let mut models: Vec<Option<ShadingModel>> =
         ShadingModel::ALL.iter().map(|m| Some(*m)).collect();
     models.push(None);
-    let mut gpu_ms: Vec<Vec<f64>> = vec![Vec::with_capacity(rounds); models.len()];
-    if gpu.timestamps {
-        for _ in 0..3 {
-            still.time_character_pass(&gpu, Some(ShadingModel::Ward));
-        }
-        for r in 0..rounds {
-            for k in 0..models.len() {
-                let i = (k + r) % models.len();
-                let ms = still
-                    .time_character_pass(&gpu, models[i])
-                    .ok_or("timestamp read failed")?;
-                gpu_ms[i].push(ms);
-            }
-        }
-    }
+    let gpu_ms = if gpu.timestamps {
+        time_models(&gpu, &mut still, &models, rounds, || {})?
+    } else {
+        vec![Vec::new(); models.len()]
+    };
     let name = |m: &Option<ShadingModel>| m.map_or("unlit", |m| m.name());
     let ward = &gpu_ms[0];
     let per_model: Vec<serde_json::Value> = models

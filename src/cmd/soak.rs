@@ -61,6 +61,10 @@ use crate::alloc_count::allocations;
 use crate::cli::parse_model;
 use crate::cmd::render::parse_size;
 use crate::cmd::stats::{percentile, ratio_ci};
+use dermis_core::soak::{
+    page_bytes, report, resident_mb, summarize, summary_lines, write_atomic, FrameRec, SecondRec,
+    SummaryInput,
+};
 
 #[derive(clap::Args, Debug, Clone)]
 pub struct SoakArgs {
@@ -243,72 +247,9 @@ impl TimerRing {
     }
 }
 
-/// One frame.
-#[derive(Clone, Copy, Debug, Serialize)]
-pub struct FrameRec {
-    pub frame: usize,
-    pub t_s: f64,
-    pub cpu_ms: f64,
-    pub submit_ms: f64,
-    pub gpu_ms: Option<f64>,
-    pub present_periods: Option<f64>,
-    pub allocs: u64,
-    pub tier: usize,
-    pub model: &'static str,
-    pub coverage: f32,
-    pub lit: bool,
-}
-
-/// One second.
-#[derive(Clone, Copy, Debug, Serialize)]
-struct SecondRec {
-    t_s: f64,
-    frames: usize,
-    fps: f64,
-    cpu_ms_mean: f64,
-    cpu_ms_max: f64,
-    gpu_ms_mean: Option<f64>,
-    rss_mb: Option<f64>,
-    tier: usize,
-    governor_changes: u64,
-    allocs: u64,
-}
-
 enum Msg {
     Frames(Vec<FrameRec>),
     Second(SecondRec),
-}
-
-/// Resident memory in MiB (`None` where /proc is missing).
-pub fn resident_mb(page_bytes: f64) -> Option<f64> {
-    let statm = std::fs::read_to_string("/proc/self/statm").ok()?;
-    let pages: f64 = statm.split_whitespace().nth(1)?.parse().ok()?;
-    Some(pages * page_bytes / (1024.0 * 1024.0))
-}
-
-/// Page size: statm's resident pages against status's VmRSS (kB), rounded to a power of two.
-fn page_bytes() -> f64 {
-    let calibrate = || -> Option<f64> {
-        let status = std::fs::read_to_string("/proc/self/status").ok()?;
-        let kb: f64 = status
-            .lines()
-            .find(|l| l.starts_with("VmRSS:"))?
-            .split_whitespace()
-            .nth(1)?
-            .parse()
-            .ok()?;
-        let statm = std::fs::read_to_string("/proc/self/statm").ok()?;
-        let pages: f64 = statm.split_whitespace().nth(1)?.parse().ok()?;
-        (pages > 0.0).then(|| 2f64.powf((kb * 1024.0 / pages).log2().round()))
-    };
-    calibrate().unwrap_or(4096.0)
-}
-
-fn write_atomic(path: &Path, value: &Value) -> Result<(), String> {
-    let tmp = path.with_extension("json.tmp");
-    let text = serde_json::to_string_pretty(value).map_err(|e| e.to_string())?;
-    std::fs::write(&tmp, text).map_err(|e| format!("{}: {e}", tmp.display()))?;
-    std::fs::rename(&tmp, path).map_err(|e| format!("{}: {e}", path.display()))
 }
 
 /// The writer thread: appends frames, samples memory, rewrites soak.json each second.
@@ -334,7 +275,7 @@ fn writer(dir: PathBuf, config: Value, rx: mpsc::Receiver<Msg>) -> Result<Vec<Se
                 seconds.push(s);
                 write_atomic(
                     &dir.join("soak.json"),
-                    &json!({"format": "dermis-soak/1", "status": "running", "config": config, "seconds": seconds}),
+                    &report("running", &config, &seconds, None),
                 )?;
             }
         }
@@ -578,21 +519,13 @@ pub fn run(args: SoakArgs) -> Result<(), String> {
                 Some(w) if !same_load_objects(&w, &live) => live_changes += 1,
                 _ => {}
             }
-            let sec = &frames[second_start..];
-            let n = sec.len().max(1) as f64;
-            let gpu: Vec<f64> = sec.iter().filter_map(|f| f.gpu_ms).collect();
-            let rec = SecondRec {
+            let rec = SecondRec::of(
+                &frames[second_start..],
                 t_s,
-                frames: sec.len(),
-                fps: sec.len() as f64 / (t_s - last_second_t).max(1e-3),
-                cpu_ms_mean: sec.iter().map(|f| f.cpu_ms).sum::<f64>() / n,
-                cpu_ms_max: sec.iter().map(|f| f.cpu_ms).fold(0.0, f64::max),
-                gpu_ms_mean: (!gpu.is_empty()).then(|| gpu.iter().sum::<f64>() / gpu.len() as f64),
-                rss_mb: None,
+                last_second_t,
                 tier,
-                governor_changes: governor.changes(),
-                allocs: sec.iter().map(|f| f.allocs).sum(),
-            };
+                governor.changes(),
+            );
             second_start = frames.len();
             last_second_t = t_s;
             let upto = ring
@@ -672,232 +605,21 @@ pub fn run(args: SoakArgs) -> Result<(), String> {
     });
     write_atomic(
         &args.out.join("soak.json"),
-        &json!({"format": "dermis-soak/1", "status": "complete", "config": config, "seconds": seconds, "summary": summary}),
+        &report("complete", &config, &seconds, Some(&summary)),
     )?;
     let chart = args.out.join("soak.png");
     if let Err(e) = chart_png(&frames, &seconds, tiers.as_slice(), budget_ms, &chart) {
         log::warn!("chart not drawn: {e}");
     }
-    print_summary(&config, &summary);
+    for line in summary_lines(&config, &summary) {
+        println!("{line}");
+    }
     println!(
         "report: {}  chart: {}",
         args.out.join("soak.json").display(),
         chart.display()
     );
     Ok(())
-}
-
-struct SummaryInput<'a> {
-    frames: &'a [FrameRec],
-    seconds: &'a [SecondRec],
-    elapsed: f64,
-    budget_ms: f64,
-    warm_up_s: f64,
-    tiers: &'a [ShadingModel],
-    governor_changes: u64,
-    tier_changes: u64,
-    live_warm: Option<LiveObjects>,
-    live_end: LiveObjects,
-    live_changes: u64,
-    buffers: (isize, isize),
-    untimed: u64,
-    runs: u32,
-}
-
-/// Least-squares slope of y over x.
-pub fn slope(xs: &[f64], ys: &[f64]) -> f64 {
-    let n = xs.len() as f64;
-    if xs.len() < 2 {
-        return f64::NAN;
-    }
-    let (mx, my) = (xs.iter().sum::<f64>() / n, ys.iter().sum::<f64>() / n);
-    let sxy: f64 = xs.iter().zip(ys).map(|(x, y)| (x - mx) * (y - my)).sum();
-    let sxx: f64 = xs.iter().map(|x| (x - mx).powi(2)).sum();
-    if sxx > 0.0 {
-        sxy / sxx
-    } else {
-        f64::NAN
-    }
-}
-
-/// Stability as in 3DMark: worst window's mean FPS / best window's, in %. One-minute windows
-/// for runs of 5 minutes or more, else 10 equal windows, over `[t0, t1)`.
-pub fn stability(times: &[f64], t0: f64, t1: f64) -> (f64, usize, f64, Vec<f64>) {
-    let span = t1 - t0;
-    if span <= 0.0 {
-        return (f64::NAN, 0, 0.0, Vec::new());
-    }
-    let (n, w) = if span >= 300.0 {
-        ((span / 60.0).floor() as usize, 60.0)
-    } else {
-        (10, span / 10.0)
-    };
-    let mut counts = vec![0usize; n];
-    for &t in times {
-        if t >= t0 {
-            let i = ((t - t0) / w) as usize;
-            if i < n {
-                counts[i] += 1;
-            }
-        }
-    }
-    let fps: Vec<f64> = counts.iter().map(|&c| c as f64 / w).collect();
-    let best = fps.iter().copied().fold(0.0, f64::max);
-    let worst = fps.iter().copied().fold(f64::INFINITY, f64::min);
-    let pct = if best > 0.0 {
-        100.0 * worst / best
-    } else {
-        f64::NAN
-    };
-    (pct, n, w, fps)
-}
-
-fn summarize(s: &SummaryInput) -> Value {
-    let steady: Vec<&FrameRec> = s.frames.iter().filter(|f| f.t_s >= s.warm_up_s).collect();
-    let cpu: Vec<f64> = steady.iter().map(|f| f.cpu_ms).collect();
-    let gpu: Vec<f64> = steady.iter().filter_map(|f| f.gpu_ms).collect();
-    let cost: Vec<f64> = steady
-        .iter()
-        .map(|f| f.gpu_ms.map_or(f.cpu_ms, |g| g.max(f.cpu_ms)))
-        .collect();
-    let q = |v: &[f64]| {
-        json!({
-            "p50": percentile(v, 0.5), "p95": percentile(v, 0.95), "p99": percentile(v, 0.99),
-            "max": v.iter().copied().fold(f64::NAN, f64::max),
-        })
-    };
-    let over = cost.iter().filter(|&&c| c > s.budget_ms).count();
-    let mut hist = [0u64; 4];
-    for f in &steady {
-        if let Some(p) = f.present_periods {
-            let k = (p.round().max(1.0) as usize - 1).min(3);
-            hist[k] += 1;
-        }
-    }
-    let times: Vec<f64> = s.frames.iter().map(|f| f.t_s).collect();
-    let (stab, n_windows, window_s, window_fps) = stability(&times, s.warm_up_s, s.elapsed);
-    let mem: Vec<(f64, f64)> = s
-        .seconds
-        .iter()
-        .filter(|r| r.t_s >= s.warm_up_s)
-        .filter_map(|r| r.rss_mb.map(|m| (r.t_s, m)))
-        .collect();
-    let (mt, mm): (Vec<f64>, Vec<f64>) = mem.iter().copied().unzip();
-    let growth = slope(&mt, &mm) * 60.0;
-    let mut tier_frames = vec![0u64; s.tiers.len()];
-    for f in s.frames {
-        tier_frames[f.tier.min(s.tiers.len() - 1)] += 1;
-    }
-    let allocs: Vec<f64> = steady.iter().map(|f| f.allocs as f64).collect();
-    let fps = steady.len() as f64 / (s.elapsed - s.warm_up_s).max(1e-9);
-    json!({
-        "frames": s.frames.len(),
-        "elapsed_s": s.elapsed,
-        "steady_frames": steady.len(),
-        "mean_fps": fps,
-        "budget_ms": s.budget_ms,
-        "cpu_frame_ms": q(&cpu),
-        "submit_ms": q(&steady.iter().map(|f| f.submit_ms).collect::<Vec<_>>()),
-        "gpu_frame_ms": q(&gpu),
-        "frame_ms": q(&cost),
-        "frames_over_budget": over,
-        "frames_over_budget_pct": 100.0 * over as f64 / steady.len().max(1) as f64,
-        "gpu_untimed_frames": s.untimed,
-        "stability_pct": stab,
-        "stability_windows": n_windows,
-        "stability_window_s": window_s,
-        "window_fps": window_fps,
-        "memory_mb_start": mm.first(),
-        "memory_mb_end": mm.last(),
-        "memory_growth_mb_per_min": growth,
-        "present_histogram": {"on_time": hist[0], "late_1": hist[1], "late_2": hist[2], "late_3_plus": hist[3]},
-        "allocations_per_frame": {"p50": percentile(&allocs, 0.5), "max": allocs.iter().copied().fold(f64::NAN, f64::max)},
-        "tiers": s.tiers.iter().map(|m| m.name()).collect::<Vec<_>>(),
-        "tier_frames": tier_frames,
-        "tier_changes": s.tier_changes,
-        "governor_changes": s.governor_changes,
-        "gpu_objects_after_warm_up": s.live_warm,
-        "gpu_objects_at_end": s.live_end,
-        "gpu_object_count_changes": s.live_changes,
-        "gpu_objects_constant": s.live_warm.is_some() && s.live_changes == 0,
-        "gpu_buffers_live_range": [s.buffers.0, s.buffers.1],
-        "game_runs": s.runs,
-    })
-}
-
-fn print_summary(config: &Value, s: &Value) {
-    let f = |v: &Value| v.as_f64().unwrap_or(f64::NAN);
-    println!(
-        "adapter: {}   {}x{} target {} fps ({}), tiers {}",
-        config["adapter"].as_str().unwrap_or("?"),
-        config["size"][0],
-        config["size"][1],
-        config["target_fps"],
-        if config["uncapped"].as_bool() == Some(true) {
-            "uncapped"
-        } else {
-            "capped"
-        },
-        s["tiers"]
-    );
-    println!(
-        "{} frames in {:.1} s ({:.1} fps after {:.1} s warm-up), {} game runs",
-        s["frames"],
-        f(&s["elapsed_s"]),
-        f(&s["mean_fps"]),
-        f(&config["warm_up_s"]),
-        s["game_runs"]
-    );
-    for (name, key) in [
-        ("frame (max of CPU, GPU)", "frame_ms"),
-        ("CPU (update..encode)", "cpu_frame_ms"),
-        ("queue.submit call", "submit_ms"),
-        ("GPU", "gpu_frame_ms"),
-    ] {
-        let v = &s[key];
-        println!(
-            "  {name:<24} ms: p50 {:.2}  p95 {:.2}  p99 {:.2}  max {:.2}",
-            f(&v["p50"]),
-            f(&v["p95"]),
-            f(&v["p99"]),
-            f(&v["max"])
-        );
-    }
-    println!(
-        "  frames over the {:.2} ms budget: {} ({:.1} %)",
-        f(&s["budget_ms"]),
-        s["frames_over_budget"],
-        f(&s["frames_over_budget_pct"])
-    );
-    println!(
-        "  stability: {:.1} % (worst/best mean FPS over {} windows of {:.1} s)",
-        f(&s["stability_pct"]),
-        s["stability_windows"],
-        f(&s["stability_window_s"])
-    );
-    println!(
-        "  memory: {:.1} → {:.1} MiB, growth {:+.3} MiB/min (least squares)",
-        f(&s["memory_mb_start"]),
-        f(&s["memory_mb_end"]),
-        f(&s["memory_growth_mb_per_min"])
-    );
-    let h = &s["present_histogram"];
-    println!(
-        "  present intervals: on time {}, 1 late {}, 2 late {}, 3+ late {}",
-        h["on_time"], h["late_1"], h["late_2"], h["late_3_plus"]
-    );
-    println!(
-        "  tiers: frames per tier {} ({} changes, {} by the governor); heap allocations/frame p50 {} max {}",
-        s["tier_frames"],
-        s["tier_changes"],
-        s["governor_changes"],
-        s["allocations_per_frame"]["p50"],
-        s["allocations_per_frame"]["max"]
-    );
-    println!(
-        "  GPU objects (pipelines, modules, bind groups, textures) constant after warm-up: {} ({} changes; live buffers {}); untimed GPU frames {}",
-        s["gpu_objects_constant"], s["gpu_object_count_changes"], s["gpu_buffers_live_range"], s["gpu_untimed_frames"]
-    );
 }
 
 /// Frame time, tier and resident memory over time, three panels.

@@ -149,20 +149,33 @@ pub fn run(args: SssArgs) -> Result<(), String> {
         args.material.name, args.g, args.photons
     );
     let (r, se) = reference.semi_infinite;
+    let max_se = |se: &[f64; 3]| se[0].max(se[1]).max(se[2]);
     println!(
-        "{:<16} {:>28}",
-        "semi-infinite",
-        format!(
-            "MC {:.4} {:.4} {:.4} (±{:.4})",
-            r[0],
-            r[1],
-            r[2],
-            se[0].max(se[1]).max(se[2])
-        )
+        "semi-infinite: MC {:.4} {:.4} {:.4} (±{:.4})",
+        r[0],
+        r[1],
+        r[2],
+        max_se(&se)
     );
+    print_models(&material, None, r);
+    for (d, v, se) in &reference.slabs {
+        println!(
+            "slab {d} mm: MC {:.4} {:.4} {:.4} (±{:.4})",
+            v[0],
+            v[1],
+            v[2],
+            max_se(se)
+        );
+        print_models(&material, Some(*d), *v);
+    }
+    Ok(())
+}
+
+/// One line per model: its prediction and its relative error against `reference`.
+fn print_models(material: &Material, slab: Option<f64>, reference: [f64; 3]) {
     for model in ShadingModel::ALL {
-        let p = prediction::total_reflectance(model, &material, None);
-        let e = rel(p, r);
+        let p = prediction::total_reflectance(model, material, slab);
+        let e = rel(p, reference);
         println!(
             "  {:<14} {:.4} {:.4} {:.4}   {:+6.1} % {:+6.1} % {:+6.1} %",
             model.name(),
@@ -174,28 +187,4 @@ pub fn run(args: SssArgs) -> Result<(), String> {
             e[2] * 100.0
         );
     }
-    for (d, v, se) in &reference.slabs {
-        println!(
-            "slab {d} mm: MC {:.4} {:.4} {:.4} (±{:.4})",
-            v[0],
-            v[1],
-            v[2],
-            se[0].max(se[1]).max(se[2])
-        );
-        for model in ShadingModel::ALL {
-            let p = prediction::total_reflectance(model, &material, Some(*d));
-            let e = rel(p, *v);
-            println!(
-                "  {:<14} {:.4} {:.4} {:.4}   {:+6.1} % {:+6.1} % {:+6.1} %",
-                model.name(),
-                p[0],
-                p[1],
-                p[2],
-                e[0] * 100.0,
-                e[1] * 100.0,
-                e[2] * 100.0
-            );
-        }
-    }
-    Ok(())
 }
