@@ -4,7 +4,9 @@
 //! [`Renderer`](crate::app::Renderer); touches and keys go to the game's session.
 
 use crate::app::{Game, Renderer};
+use crate::intent::Extras;
 use crate::lifecycle::{self, Action, Event, Lifecycle};
+use crate::soak::{Soak, SoakConfig};
 use android_activity::input::{InputEvent, KeyAction, Keycode, MotionAction};
 use android_activity::{AndroidApp, InputStatus, MainEvent, PollEvent, WindowManagerFlags};
 use dermis_core::game::{Key, Session};
@@ -31,11 +33,29 @@ fn android_main(app: AndroidApp) {
     );
 
     let mut lc = Lifecycle::new();
-    let mut renderer = Renderer::new(load_game(&app), display_scale(&app));
-    if renderer.game().is_none() {
+    let extras = crate::intent::read(&app);
+    log::info!("intent extras: {extras:?}");
+    let (soak, soak_error) = soak_config(&app, &extras);
+    let test_loop = extras.is_test_loop();
+    let mut renderer = Renderer::new(load_game(&app, &extras, soak.as_ref()), display_scale(&app));
+    renderer.soak = soak.map(Soak::new);
+    if let Some(error) = soak_error {
+        log::error!("{error}; finishing");
+        if test_loop {
+            write_test_loop_results(&app, &serde_json::json!({"error": error}));
+        }
+        finish(&app);
+    } else if renderer.game().is_none() {
         // Nothing to show: leave through the normal lifecycle (events until Destroy).
+        if test_loop {
+            write_test_loop_results(
+                &app,
+                &serde_json::json!({"error": "the assets could not be loaded"}),
+            );
+        }
         finish(&app);
     }
+    let mut soak_finished = false;
     let mut pointer = Pointer::default();
     let mut exit = false;
     while !exit {
@@ -112,6 +132,11 @@ fn android_main(app: AndroidApp) {
                 exit |= perform(&app, &mut renderer, action);
             }
         }
+        if !soak_finished && renderer.soak.as_ref().is_some_and(|s| s.done()) {
+            soak_finished = true;
+            end_soak(&app, &mut renderer, test_loop);
+            finish(&app);
+        }
     }
     drop(renderer);
     log::info!("android_main returns");
@@ -133,7 +158,7 @@ fn display_scale(app: &AndroidApp) -> f32 {
 
 /// Loads the assets (all of them, now), reads the intent extras and builds the session with
 /// the settings file in the app's internal data directory.
-fn load_game(app: &AndroidApp) -> Option<Game> {
+fn load_game(app: &AndroidApp, extras: &Extras, soak: Option<&SoakConfig>) -> Option<Game> {
     let t0 = Instant::now();
     let assets = match crate::assets::load(&app.asset_manager()) {
         Ok(a) => a,
@@ -147,8 +172,7 @@ fn load_game(app: &AndroidApp) -> Option<Game> {
         t0.elapsed().as_millis(),
         assets.props.len()
     );
-    let extras = crate::intent::read(app);
-    log::info!("intent extras: {extras:?}");
+    let autoplay = extras.autoplay || soak.is_some();
     let settings_path = app.internal_data_path().map(|d| d.join("settings.txt"));
     if settings_path.is_none() {
         log::warn!("no internal data path: settings are not persisted");
@@ -156,14 +180,12 @@ fn load_game(app: &AndroidApp) -> Option<Game> {
     let seed = std::time::SystemTime::now()
         .duration_since(std::time::UNIX_EPOCH)
         .map_or(1, |d| d.as_nanos() as u64);
-    let session = Session::new(
-        &assets.character,
-        seed,
-        settings_path.clone(),
-        extras.autoplay,
-    );
+    let session = Session::new(&assets.character, seed, settings_path.clone(), autoplay);
     let mut game = Game::new(assets, session, settings_path);
-    if let Some(name) = &extras.shading {
+    if let Some(soak) = soak {
+        game.session.settings.set_shading_model(soak.shading);
+        game.save_settings_on_save_state = false;
+    } else if let Some(name) = &extras.shading {
         match ShadingModel::from_name(name) {
             Some(model) => {
                 game.session.settings.set_shading_model(model);
@@ -178,18 +200,127 @@ fn load_game(app: &AndroidApp) -> Option<Game> {
     log::info!(
         "settings: shading {}{}, best {}, autoplay {}, seed {seed}, file {}",
         game.session.shading().name(),
-        if extras.shading.is_some() && !game.save_settings_on_save_state {
+        if !game.save_settings_on_save_state {
             " (from the intent)"
         } else {
             ""
         },
         game.session.settings.best,
-        extras.autoplay,
+        autoplay,
         game.settings_path
             .as_deref()
             .map_or("<none>".into(), |p| p.display().to_string())
     );
     Some(game)
+}
+
+/// The soak the intent asks for: a Game Loop test's scenario, or `soak_seconds` > 0 (with
+/// `shading` and `target_fps`). `Err`-like second value: why the requested run is impossible.
+fn soak_config(app: &AndroidApp, extras: &Extras) -> (Option<SoakConfig>, Option<String>) {
+    let named = |name: &str| {
+        ShadingModel::from_name(name).ok_or_else(|| {
+            format!(
+                "shading {name:?} is not a model (known: {})",
+                ShadingModel::names()
+            )
+        })
+    };
+    let (seconds, shading, scenario) = if extras.is_test_loop() {
+        let n = extras.scenario.unwrap_or(0);
+        let Some((seconds, name)) = crate::soak::scenario(n) else {
+            return (
+                None,
+                Some(format!("Game Loop scenario {n} is not defined (1, 2, 3)")),
+            );
+        };
+        match named(name) {
+            Ok(m) => (seconds as f64, m, Some(n)),
+            Err(e) => return (None, Some(e)),
+        }
+    } else if extras.soak_seconds > 0 {
+        let shading = match &extras.shading {
+            Some(name) => match named(name) {
+                Ok(m) => m,
+                Err(e) => return (None, Some(e)),
+            },
+            None => ShadingModel::Oss,
+        };
+        (extras.soak_seconds as f64, shading, None)
+    } else {
+        return (None, None);
+    };
+    let target_fps = if extras.target_fps > 0 {
+        extras.target_fps.min(1000) as f64
+    } else {
+        60.0
+    };
+    let out_dir = crate::intent::external_files_dir(app);
+    if let Some(dir) = &out_dir {
+        if let Err(e) = std::fs::create_dir_all(dir) {
+            log::warn!("{}: {e}", dir.display());
+        }
+    }
+    log::info!(
+        "soak requested: {seconds} s, {} at {target_fps} fps, report to {}{}",
+        shading.name(),
+        out_dir
+            .as_deref()
+            .map_or("<no external files dir>".into(), |d| d
+                .join("soak.json")
+                .display()
+                .to_string()),
+        if extras.is_test_loop() {
+            format!(" and {}", extras.data.as_deref().unwrap_or("<no data URI>"))
+        } else {
+            String::new()
+        }
+    );
+    (
+        Some(SoakConfig {
+            seconds,
+            target_fps,
+            shading,
+            scenario,
+            out_dir,
+        }),
+        None,
+    )
+}
+
+/// Ends the soak: the summary to logcat, `soak.json` to the external files directory and, for
+/// a Game Loop test, the report to the intent's data URI.
+fn end_soak(app: &AndroidApp, renderer: &mut Renderer, test_loop: bool) {
+    let out_dir = renderer.soak.as_ref().and_then(|s| s.cfg.out_dir.clone());
+    let Some(report) = renderer.finish_soak() else {
+        log::error!("soak: no GPU, no report");
+        return;
+    };
+    if let Some(dir) = out_dir {
+        let path = dir.join("soak.json");
+        match dermis_core::soak::write_atomic(&path, &report) {
+            Ok(()) => log::info!("soak: report written to {}", path.display()),
+            Err(e) => log::error!("soak: {e}"),
+        }
+    }
+    if test_loop {
+        write_test_loop_results(app, &report);
+    }
+}
+
+/// Writes `value` to the file the Game Loop intent's data URI names.
+fn write_test_loop_results(app: &AndroidApp, value: &serde_json::Value) {
+    use std::io::Write;
+    let result = crate::intent::open_data_for_write(app).and_then(|fd| {
+        let mut file = std::fs::File::from(fd);
+        let text = serde_json::to_vec_pretty(value).map_err(|e| e.to_string())?;
+        file.write_all(&text)
+            .and_then(|()| file.sync_all())
+            .map_err(|e| e.to_string())
+    });
+    match result {
+        Ok(()) => log::info!("Game Loop results written to the intent's data URI"),
+        Err(e) => log::error!("Game Loop results not written: {e}"),
+    }
 }
 
 fn finish(app: &AndroidApp) {
@@ -215,6 +346,12 @@ fn perform(app: &AndroidApp, renderer: &mut Renderer, action: Action) -> bool {
         Action::CreateSurface { width, height } | Action::RecreateSurface { width, height } => {
             match app.native_window() {
                 Some(window) => {
+                    if let Some(soak) = &renderer.soak {
+                        crate::ndk_dl::set_frame_rate(
+                            window.ptr().as_ptr().cast(),
+                            soak.cfg.target_fps as f32,
+                        );
+                    }
                     if let Err(e) = renderer.create_surface(window, width, height) {
                         log::error!("cannot create the surface: {e}");
                     }

@@ -106,6 +106,8 @@ pub struct Renderer {
     scale: f32,
     last: Option<Instant>,
     frames: u64,
+    /// The soak run in progress (intent extras or a Game Loop test), fed each frame.
+    pub soak: Option<crate::soak::Soak>,
 }
 
 impl Renderer {
@@ -118,6 +120,7 @@ impl Renderer {
             scale,
             last: None,
             frames: 0,
+            soak: None,
         }
     }
 
@@ -211,6 +214,14 @@ impl Renderer {
         Ok(())
     }
 
+    /// Ends the soak run (if any) and returns its complete report.
+    pub fn finish_soak(&mut self) -> Option<serde_json::Value> {
+        let mut soak = self.soak.take()?;
+        let gpu = self.gpu.as_ref()?;
+        let runs = self.game.as_ref().map_or(0, |g| g.session.game.runs());
+        Some(soak.finish(&gpu.device, runs))
+    }
+
     pub fn drop_surface(&mut self) {
         if self.target.take().is_some() {
             log::info!("surface dropped");
@@ -277,8 +288,22 @@ impl Renderer {
                 label: Some("frame"),
             });
         gg.encode(&mut enc, &t.targets, &view, &game.session);
-        gpu.queue.submit([enc.finish()]);
+        let commands = enc.finish();
+        let t_submit = Instant::now();
+        gpu.queue.submit([commands]);
         gpu.queue.present(frame);
+        let presented = Instant::now();
+        if let Some(soak) = &mut self.soak {
+            soak.frame(
+                gpu,
+                (width, height),
+                now,
+                (t_submit - now).as_secs_f64() * 1e3,
+                (presented - t_submit).as_secs_f64() * 1e3,
+                presented,
+                game.session.shading(),
+            );
+        }
         self.frames += 1;
         if self.frames.is_multiple_of(3600) {
             log::info!(

@@ -16,3 +16,7 @@ mod app;
 mod assets;
 #[cfg(target_os = "android")]
 mod intent;
+#[cfg(target_os = "android")]
+mod ndk_dl;
+#[cfg(target_os = "android")]
+mod soak;

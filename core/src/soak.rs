@@ -329,7 +329,12 @@ pub fn summary_lines(config: &Value, s: &Value) -> Vec<String> {
 }
 
 /// The report object: `status` "running" (no summary) or "complete".
-pub fn report(status: &str, config: &Value, seconds: &[SecondRec], summary: Option<&Value>) -> Value {
+pub fn report(
+    status: &str,
+    config: &Value,
+    seconds: &[SecondRec],
+    summary: Option<&Value>,
+) -> Value {
     let mut v = json!({"format": FORMAT, "status": status, "config": config, "seconds": seconds});
     if let Some(s) = summary {
         v["summary"] = s.clone();

@@ -54,7 +54,6 @@ use dermis_core::scene::SceneAssets;
 use dermis_core::shading::ShadingModel;
 use dermis_core::ui::Insets;
 use glam::Vec3;
-use serde::Serialize;
 use serde_json::{json, Value};
 
 use crate::alloc_count::allocations;
