@@ -75,3 +75,26 @@ fn the_game_builds_exactly_the_pipelines_it_can_reach() {
         needed.models.len() as isize + 2
     );
 }
+
+#[test]
+fn each_model_composes_exactly_the_effects_it_declares() {
+    for model in ShadingModel::ALL {
+        let src = compose("character", &model.defs()).unwrap();
+        let has = |m: &str| src.contains(&format!("// ---- module {m} ----"));
+        let e = model.effects();
+        assert_eq!(has("ward_lobe"), e.specular, "{model}: specular lobe");
+        assert_eq!(
+            has("dipole_nd") || has("oss_nd") || has("burley_nd"),
+            e.subsurface,
+            "{model}: subsurface"
+        );
+        assert_eq!(
+            src.contains("translucency"),
+            e.translucency,
+            "{model}: translucency"
+        );
+        // Texture: the model reads the surface's albedo (the sampled texture) in `shade`.
+        let shade = &src[src.find("fn shade(").unwrap()..];
+        assert_eq!(shade.contains("s.albedo"), e.texture, "{model}: texture");
+    }
+}

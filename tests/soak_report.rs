@@ -50,7 +50,7 @@ fn check_frames_jsonl(path: &Path) -> usize {
 fn soak_writes_report_chart_and_summary() {
     let dir = tmp_dir("soak");
     let out = Command::new(env!("CARGO_BIN_EXE_dermis"))
-        .args(["soak", "--seconds", "5", "--out"])
+        .args(["soak", "--seconds", "30", "--size", "640x360", "--out"])
         .arg(&dir)
         .output()
         .unwrap();
@@ -76,7 +76,7 @@ fn soak_writes_report_chart_and_summary() {
     assert_eq!(report["format"], "dermis-soak/1");
     assert_eq!(report["status"], "complete");
     let config = &report["config"];
-    assert_eq!(config["seconds"].as_f64(), Some(5.0));
+    assert_eq!(config["seconds"].as_f64(), Some(30.0));
     assert_eq!(config["tiers"][0], "oss");
     assert!(config["adapter"].is_string());
     let seconds = report["seconds"].as_array().expect("seconds");

@@ -18,4 +18,4 @@ pub mod units;
 pub mod ward;
 
 pub use material::Material;
-pub use registry::{ModelParams, ShadingModel};
+pub use registry::{Effects, ModelParams, ShadingModel};

@@ -22,6 +22,21 @@ pub enum ShadingModel {
     Burley,
 }
 
+/// The effects a material shaded by a model calls for — what its shader computes. The
+/// renderer composes a pipeline only for models a scene can reach, so an effect no material
+/// uses has no code anywhere (props declare none and get the plain default-lit shader).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Effects {
+    /// Light transported under the surface (dipole/OSS/Burley terms).
+    pub subsurface: bool,
+    /// OSS's translucency term 20ρ_ts/d^2.5.
+    pub translucency: bool,
+    /// The Ward specular lobe.
+    pub specular: bool,
+    /// The base-colour texture tints the result.
+    pub texture: bool,
+}
+
 /// The uniform block a model's shader reads at `@group(1) @binding(0)`: 16 vec4s, laid out
 /// by each model's own `Params` struct (see `ward.rs`, `dipole.rs`, `oss.rs`).
 #[repr(C, align(16))]
@@ -88,6 +103,21 @@ impl ShadingModel {
     /// All names, comma-separated (for error messages and `--help`).
     pub fn names() -> String {
         Self::ALL.map(Self::name).join(", ")
+    }
+
+    /// The effects this model's shader computes.
+    pub fn effects(self) -> Effects {
+        let (subsurface, translucency, specular, texture) = match self {
+            Self::Ward | Self::WardPrinted => (false, false, true, true),
+            Self::Dipole | Self::DipolePrinted | Self::Burley => (true, false, false, false),
+            Self::Oss | Self::OssStable => (true, true, true, true),
+        };
+        Effects {
+            subsurface,
+            translucency,
+            specular,
+            texture,
+        }
     }
 
     /// The WGSL module (file in `shaders/`) implementing the model.
