@@ -35,6 +35,10 @@ fn android_main(app: AndroidApp) {
     let mut lc = Lifecycle::new();
     let extras = crate::intent::read(&app);
     log::info!("intent extras: {extras:?}");
+    match crate::intent::display_refresh_rate(&app) {
+        Some(hz) => log::info!("display refresh rate: {hz:.1} Hz"),
+        None => log::info!("display refresh rate: unknown"),
+    }
     let (soak, soak_error) = soak_config(&app, &extras);
     let test_loop = extras.is_test_loop();
     let mut renderer = Renderer::new(load_game(&app, &extras, soak.as_ref()), display_scale(&app));

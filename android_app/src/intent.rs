@@ -107,6 +107,42 @@ pub fn external_files_dir(app: &AndroidApp) -> Option<PathBuf> {
     }
 }
 
+/// The display's refresh rate in Hz (`getWindowManager().getDefaultDisplay()
+/// .getRefreshRate()`), or `None` when JNI fails.
+pub fn display_refresh_rate(app: &AndroidApp) -> Option<f32> {
+    let r = with_activity(app, |env, activity| {
+        let wm = env
+            .call_method(
+                activity,
+                jni_str!("getWindowManager"),
+                jni_sig!("()Landroid/view/WindowManager;"),
+                &[],
+            )?
+            .l()?;
+        let display = env
+            .call_method(
+                &wm,
+                jni_str!("getDefaultDisplay"),
+                jni_sig!("()Landroid/view/Display;"),
+                &[],
+            )?
+            .l()?;
+        env.call_method(&display, jni_str!("getRefreshRate"), jni_sig!("()F"), &[])?
+            .f()
+    });
+    match r {
+        Ok(hz) if hz.is_finite() && hz > 0.0 => Some(hz),
+        Ok(hz) => {
+            log::warn!("display refresh rate reported as {hz}");
+            None
+        }
+        Err(e) => {
+            log::warn!("display refresh rate over JNI failed: {e}");
+            None
+        }
+    }
+}
+
 /// Opens the launching intent's data URI (`content://` or `file://`) for writing:
 /// `getContentResolver().openFileDescriptor(getIntent().getData(), "w").detachFd()`.
 pub fn open_data_for_write(app: &AndroidApp) -> Result<OwnedFd, String> {
