@@ -1,20 +1,7 @@
 //! Small statistics for bench reports.
 
-/// The q-quantile (0..=1) by linear interpolation; NaN for an empty sample.
-pub fn percentile(xs: &[f64], q: f64) -> f64 {
-    if xs.is_empty() {
-        return f64::NAN;
-    }
-    let mut v = xs.to_vec();
-    v.sort_by(f64::total_cmp);
-    let pos = q.clamp(0.0, 1.0) * (v.len() - 1) as f64;
-    let (i, f) = (pos.floor() as usize, pos.fract());
-    if i + 1 < v.len() {
-        v[i] * (1.0 - f) + v[i + 1] * f
-    } else {
-        v[i]
-    }
-}
+/// The q-quantile (0..=1) by linear interpolation (shared with the soak report).
+pub use dermis_core::soak::percentile;
 
 pub fn median(xs: &[f64]) -> f64 {
     percentile(xs, 0.5)
