@@ -48,6 +48,16 @@ impl Extras {
     }
 }
 
+/// `obj.name()` for a method without arguments that returns an object.
+fn get<'local, 'o, 'sig, 'args>(
+    env: &mut Env<'local>,
+    obj: impl AsRef<JObject<'o>>,
+    name: impl AsRef<jni::strings::JNIStr>,
+    sig: impl AsRef<jni::signature::MethodSignature<'sig, 'args>>,
+) -> Result<JObject<'local>, jni::errors::Error> {
+    env.call_method(obj, name, sig, &[])?.l()
+}
+
 /// Runs `f` with the JNI environment and the activity (attached to this thread).
 fn with_activity<T>(
     app: &AndroidApp,
@@ -83,14 +93,12 @@ pub fn external_files_dir(app: &AndroidApp) -> Option<PathBuf> {
         if file.is_null() {
             return Ok(None);
         }
-        let path = env
-            .call_method(
-                &file,
-                jni_str!("getAbsolutePath"),
-                jni_sig!("()Ljava/lang/String;"),
-                &[],
-            )?
-            .l()?;
+        let path = get(
+            env,
+            &file,
+            jni_str!("getAbsolutePath"),
+            jni_sig!("()Ljava/lang/String;"),
+        )?;
         let path = env.cast_local::<JString>(path)?;
         Ok(Some(PathBuf::from(path.try_to_string(env)?)))
     });
@@ -111,22 +119,18 @@ pub fn external_files_dir(app: &AndroidApp) -> Option<PathBuf> {
 /// .getRefreshRate()`), or `None` when JNI fails.
 pub fn display_refresh_rate(app: &AndroidApp) -> Option<f32> {
     let r = with_activity(app, |env, activity| {
-        let wm = env
-            .call_method(
-                activity,
-                jni_str!("getWindowManager"),
-                jni_sig!("()Landroid/view/WindowManager;"),
-                &[],
-            )?
-            .l()?;
-        let display = env
-            .call_method(
-                &wm,
-                jni_str!("getDefaultDisplay"),
-                jni_sig!("()Landroid/view/Display;"),
-                &[],
-            )?
-            .l()?;
+        let wm = get(
+            env,
+            activity,
+            jni_str!("getWindowManager"),
+            jni_sig!("()Landroid/view/WindowManager;"),
+        )?;
+        let display = get(
+            env,
+            &wm,
+            jni_str!("getDefaultDisplay"),
+            jni_sig!("()Landroid/view/Display;"),
+        )?;
         env.call_method(&display, jni_str!("getRefreshRate"), jni_sig!("()F"), &[])?
             .f()
     });
@@ -147,36 +151,30 @@ pub fn display_refresh_rate(app: &AndroidApp) -> Option<f32> {
 /// `getContentResolver().openFileDescriptor(getIntent().getData(), "w").detachFd()`.
 pub fn open_data_for_write(app: &AndroidApp) -> Result<OwnedFd, String> {
     let fd = with_activity(app, |env, activity| {
-        let intent = env
-            .call_method(
-                activity,
-                jni_str!("getIntent"),
-                jni_sig!("()Landroid/content/Intent;"),
-                &[],
-            )?
-            .l()?;
+        let intent = get(
+            env,
+            activity,
+            jni_str!("getIntent"),
+            jni_sig!("()Landroid/content/Intent;"),
+        )?;
         if intent.is_null() {
             return Ok(-1);
         }
-        let uri = env
-            .call_method(
-                &intent,
-                jni_str!("getData"),
-                jni_sig!("()Landroid/net/Uri;"),
-                &[],
-            )?
-            .l()?;
+        let uri = get(
+            env,
+            &intent,
+            jni_str!("getData"),
+            jni_sig!("()Landroid/net/Uri;"),
+        )?;
         if uri.is_null() {
             return Ok(-1);
         }
-        let resolver = env
-            .call_method(
-                activity,
-                jni_str!("getContentResolver"),
-                jni_sig!("()Landroid/content/ContentResolver;"),
-                &[],
-            )?
-            .l()?;
+        let resolver = get(
+            env,
+            activity,
+            jni_str!("getContentResolver"),
+            jni_sig!("()Landroid/content/ContentResolver;"),
+        )?;
         let mode = env.new_string("w")?;
         let pfd = env
             .call_method(
@@ -213,14 +211,12 @@ pub fn read(app: &AndroidApp) -> Extras {
 
 fn try_read(app: &AndroidApp) -> Result<Extras, jni::errors::Error> {
     with_activity(app, |env, activity| {
-        let intent = env
-            .call_method(
-                activity,
-                jni_str!("getIntent"),
-                jni_sig!("()Landroid/content/Intent;"),
-                &[],
-            )?
-            .l()?;
+        let intent = get(
+            env,
+            activity,
+            jni_str!("getIntent"),
+            jni_sig!("()Landroid/content/Intent;"),
+        )?;
         if intent.is_null() {
             return Ok(Extras::default());
         }
@@ -236,14 +232,12 @@ fn try_read(app: &AndroidApp) -> Result<Extras, jni::errors::Error> {
             .z()?;
         let soak_seconds = int_extra(env, &intent, "soak_seconds", 0)?;
         let target_fps = int_extra(env, &intent, "target_fps", 60)?;
-        let action = env
-            .call_method(
-                &intent,
-                jni_str!("getAction"),
-                jni_sig!("()Ljava/lang/String;"),
-                &[],
-            )?
-            .l()?;
+        let action = get(
+            env,
+            &intent,
+            jni_str!("getAction"),
+            jni_sig!("()Ljava/lang/String;"),
+        )?;
         let action = if action.is_null() {
             None
         } else {
@@ -254,25 +248,21 @@ fn try_read(app: &AndroidApp) -> Result<Extras, jni::errors::Error> {
         } else {
             None
         };
-        let uri = env
-            .call_method(
-                &intent,
-                jni_str!("getData"),
-                jni_sig!("()Landroid/net/Uri;"),
-                &[],
-            )?
-            .l()?;
+        let uri = get(
+            env,
+            &intent,
+            jni_str!("getData"),
+            jni_sig!("()Landroid/net/Uri;"),
+        )?;
         let data = if uri.is_null() {
             None
         } else {
-            let text = env
-                .call_method(
-                    &uri,
-                    jni_str!("toString"),
-                    jni_sig!("()Ljava/lang/String;"),
-                    &[],
-                )?
-                .l()?;
+            let text = get(
+                env,
+                &uri,
+                jni_str!("toString"),
+                jni_sig!("()Ljava/lang/String;"),
+            )?;
             Some(env.cast_local::<JString>(text)?.try_to_string(env)?)
         };
         Ok(Extras {

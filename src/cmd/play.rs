@@ -155,11 +155,7 @@ pub fn run(args: PlayArgs) -> Result<(), String> {
         "screenshots": shots.iter().filter(|s| s.1).map(|s| s.0).collect::<Vec<_>>(),
     });
     if args.json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?
-        );
-        return Ok(());
+        return crate::cmd::stats::print_json(&report);
     }
     println!("adapter: {}", gpu.adapter_name());
     println!(

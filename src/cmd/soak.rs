@@ -314,6 +314,42 @@ pub fn frame_needs(session: &Session, viewport: &Viewport) -> Needs {
 }
 
 /// Sleeps until `deadline` (coarse sleep, then a short spin for precision).
+/// Records one game frame drawing the character with `model`, bracketed by timestamps from
+/// `ring` when a slot is free for `frame`; returns the commands and the slot used.
+fn encode_timed(
+    gpu: &Gpu,
+    gg: &GameGpu,
+    target: &Offscreen,
+    session: &Session,
+    model: ShadingModel,
+    ring: &mut Option<TimerRing>,
+    frame: usize,
+) -> (wgpu::CommandBuffer, Option<usize>) {
+    let mut encoder = gpu
+        .device
+        .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+    let slot = ring.as_mut().and_then(|r| r.begin(frame));
+    if let (Some(r), Some(s)) = (ring.as_ref(), slot) {
+        r.start(&mut encoder, s);
+    }
+    let draw = DrawSet {
+        shading: Some(model),
+        ..session.draw_set()
+    };
+    gg.renderer.encode(
+        &mut encoder,
+        &target.targets,
+        &target.view,
+        draw,
+        Some(&gg.ui),
+        None,
+    );
+    if let (Some(r), Some(s)) = (ring.as_ref(), slot) {
+        r.end(&mut encoder, s);
+    }
+    (encoder.finish(), slot)
+}
+
 fn sleep_until(deadline: Instant) {
     loop {
         let now = Instant::now();
@@ -435,30 +471,8 @@ pub fn run(args: SoakArgs) -> Result<(), String> {
         let tier = governor.select(needs);
         let model = governor.tiers().model(tier);
         gg.upload(&gpu.queue, &mut session, &assets.character);
-        let mut encoder = gpu
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
         let frame = frames.len();
-        let slot = ring.as_mut().and_then(|r| r.begin(frame));
-        if let (Some(r), Some(s)) = (&ring, slot) {
-            r.start(&mut encoder, s);
-        }
-        let draw = DrawSet {
-            shading: Some(model),
-            ..session.draw_set()
-        };
-        gg.renderer.encode(
-            &mut encoder,
-            &target.targets,
-            &target.view,
-            draw,
-            Some(&gg.ui),
-            None,
-        );
-        if let (Some(r), Some(s)) = (&ring, slot) {
-            r.end(&mut encoder, s);
-        }
-        let commands = encoder.finish();
+        let (commands, slot) = encode_timed(&gpu, &gg, &target, &session, model, &mut ring, frame);
         let t_submit = Instant::now();
         in_flight.push_back(gpu.queue.submit([commands]));
         if let (Some(r), Some(s)) = (&ring, slot) {
@@ -799,29 +813,9 @@ pub fn bench_effects(args: EffectsArgs) -> Result<(), String> {
             let needs = frame_needs(&session, &viewport);
             let tier = governor.select(needs);
             gg.upload(&gpu.queue, &mut session, &assets.character);
-            let mut encoder = gpu
-                .device
-                .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
-            let slot = ring.as_mut().and_then(|r| r.begin(f));
-            if let (Some(r), Some(s)) = (&ring, slot) {
-                r.start(&mut encoder, s);
-            }
-            let draw = DrawSet {
-                shading: Some(governor.tiers().model(tier)),
-                ..session.draw_set()
-            };
-            gg.renderer.encode(
-                &mut encoder,
-                &target.targets,
-                &target.view,
-                draw,
-                Some(&gg.ui),
-                None,
-            );
-            if let (Some(r), Some(s)) = (&ring, slot) {
-                r.end(&mut encoder, s);
-            }
-            gpu.queue.submit([encoder.finish()]);
+            let model = governor.tiers().model(tier);
+            let (commands, slot) = encode_timed(&gpu, &gg, &target, &session, model, &mut ring, f);
+            gpu.queue.submit([commands]);
             let c = t0.elapsed().as_secs_f64() * 1e3;
             c_sum += c;
             if let (Some(r), Some(s)) = (&ring, slot) {
@@ -892,11 +886,7 @@ pub fn bench_effects(args: EffectsArgs) -> Result<(), String> {
         "modes": rows,
     });
     if args.json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?
-        );
-        return Ok(());
+        return crate::cmd::stats::print_json(&report);
     }
     println!("adapter: {}", gpu.adapter_name());
     println!(

@@ -138,11 +138,7 @@ pub fn run(args: SssArgs) -> Result<(), String> {
         "models": Value::Object(models),
     });
     if args.json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?
-        );
-        return Ok(());
+        return crate::cmd::stats::print_json(&report);
     }
     println!(
         "{} η={eta} g={} — total diffuse reflectance (R, G, B), relative error vs Monte Carlo ({} photons)",

@@ -3,6 +3,15 @@
 /// The q-quantile (0..=1) by linear interpolation (shared with the soak report).
 pub use dermis_core::soak::percentile;
 
+/// Prints a report as pretty JSON.
+pub fn print_json(report: &serde_json::Value) -> Result<(), String> {
+    println!(
+        "{}",
+        serde_json::to_string_pretty(report).map_err(|e| e.to_string())?
+    );
+    Ok(())
+}
+
 pub fn median(xs: &[f64]) -> f64 {
     percentile(xs, 0.5)
 }

@@ -32,25 +32,7 @@ pub fn upload(
     let (mut w, mut h) = (image.width, image.height);
     let mut level = image.rgba8.clone();
     for mip in 0..levels {
-        queue.write_texture(
-            wgpu::TexelCopyTextureInfo {
-                texture: &texture,
-                mip_level: mip,
-                origin: wgpu::Origin3d::ZERO,
-                aspect: wgpu::TextureAspect::All,
-            },
-            &level,
-            wgpu::TexelCopyBufferLayout {
-                offset: 0,
-                bytes_per_row: Some(4 * w),
-                rows_per_image: Some(h),
-            },
-            wgpu::Extent3d {
-                width: w,
-                height: h,
-                depth_or_array_layers: 1,
-            },
-        );
+        write_level(queue, &texture, mip, &level, w, h);
         if mip + 1 < levels {
             level = downsample(&level, w, h, image.srgb);
             w = (w / 2).max(1);
@@ -58,6 +40,63 @@ pub fn upload(
         }
     }
     texture.create_view(&wgpu::TextureViewDescriptor::default())
+}
+
+/// A single-level RGBA8 texture of `format` (pixel-exact data such as the UI atlas).
+pub fn upload_single(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    rgba: &[u8],
+    (width, height): (u32, u32),
+    format: wgpu::TextureFormat,
+    label: &str,
+) -> wgpu::TextureView {
+    let texture = device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
+        size: wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        view_formats: &[],
+    });
+    write_level(queue, &texture, 0, rgba, width, height);
+    texture.create_view(&wgpu::TextureViewDescriptor::default())
+}
+
+/// Writes one tightly packed RGBA8 mip level.
+fn write_level(
+    queue: &wgpu::Queue,
+    texture: &wgpu::Texture,
+    mip: u32,
+    data: &[u8],
+    w: u32,
+    h: u32,
+) {
+    queue.write_texture(
+        wgpu::TexelCopyTextureInfo {
+            texture,
+            mip_level: mip,
+            origin: wgpu::Origin3d::ZERO,
+            aspect: wgpu::TextureAspect::All,
+        },
+        data,
+        wgpu::TexelCopyBufferLayout {
+            offset: 0,
+            bytes_per_row: Some(4 * w),
+            rows_per_image: Some(h),
+        },
+        wgpu::Extent3d {
+            width: w,
+            height: h,
+            depth_or_array_layers: 1,
+        },
+    );
 }
 
 /// A 1×1 texture of one colour (the default base colour).

@@ -59,40 +59,14 @@ impl UiRenderer {
         h: u32,
     ) -> Self {
         assert_eq!(atlas_rgba.len(), (w * h * 4) as usize, "UI atlas size");
-        let texture = device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("ui atlas"),
-            size: wgpu::Extent3d {
-                width: w,
-                height: h,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: wgpu::TextureFormat::Rgba8Unorm,
-            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-            view_formats: &[],
-        });
-        queue.write_texture(
-            wgpu::TexelCopyTextureInfo {
-                texture: &texture,
-                mip_level: 0,
-                origin: wgpu::Origin3d::ZERO,
-                aspect: wgpu::TextureAspect::All,
-            },
+        let view = super::texture::upload_single(
+            device,
+            queue,
             atlas_rgba,
-            wgpu::TexelCopyBufferLayout {
-                offset: 0,
-                bytes_per_row: Some(4 * w),
-                rows_per_image: Some(h),
-            },
-            wgpu::Extent3d {
-                width: w,
-                height: h,
-                depth_or_array_layers: 1,
-            },
+            (w, h),
+            wgpu::TextureFormat::Rgba8Unorm,
+            "ui atlas",
         );
-        let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
         let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("ui"),
             address_mode_u: wgpu::AddressMode::ClampToEdge,
