@@ -40,8 +40,7 @@ fn vs_main(v: VertexIn) -> VertexOut {
     return out;
 }
 
-@fragment
-fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
+fn surface_at(in: VertexOut) -> Surface {
     let albedo = textureSample(base_color, base_sampler, in.uv).rgb;
     var s = make_surface(in.world_pos, in.normal, in.tangent, albedo, in.thickness);
     // Curvature radius from screen-space derivatives: how far the surface moves per unit of
@@ -49,5 +48,34 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     let dn = length(fwidth(in.normal));
     let dp = length(fwidth(in.world_pos));
     s.curvature_radius = min(dp / max(dn, 1e-6), FLAT_RADIUS_M);
-    return finish(shade(s));
+    return s;
 }
+
+#ifdef SCREEN_SPACE
+// Spatial models write two targets: radiance that stays (rgb) with the exit factor (a), and
+// the irradiance the subsurface pass spreads (rgb) with the pixel's size in mm (a): the
+// world-space step between neighbouring pixels, minus its part along the view ray, is the
+// pixel's footprint on the plane facing the camera at this depth.
+struct SplitOut {
+    @location(0) colour: vec4<f32>,
+    @location(1) spread: vec4<f32>,
+};
+
+@fragment
+fn fs_main(in: VertexOut) -> SplitOut {
+    let s = surface_at(in);
+    let p = shade_split(s);
+    let dx = dpdx(in.world_pos);
+    let dy = dpdy(in.world_pos);
+    let px = 0.5 * (length(dx - s.v * dot(s.v, dx)) + length(dy - s.v * dot(s.v, dy)));
+    var out: SplitOut;
+    out.colour = vec4<f32>(p.local, p.exit);
+    out.spread = vec4<f32>(p.spread, max(px * 1000.0, 1e-6));
+    return out;
+}
+#else
+@fragment
+fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
+    return finish(shade(surface_at(in)));
+}
+#endif

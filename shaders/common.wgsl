@@ -15,6 +15,9 @@ struct Frame {
     // x: exposure; y: 1 when the target is not an sRGB format and we encode by hand;
     // z: 1 to write raw radiance (HDR float targets, numerical checks).
     output: vec4<f32>,
+    // A plane (xyz·p + w ≥ 0: lit) beyond which a straight occluder shadows the light; all
+    // zero: nothing occludes it. Used by the measurement scenes (a shadow edge).
+    light_clip: vec4<f32>,
 };
 
 @group(0) @binding(0) var<uniform> frame: Frame;
@@ -49,6 +52,11 @@ fn safe_normalize(v: vec3<f32>, fallback: vec3<f32>) -> vec3<f32> {
     return v * inverseSqrt(len2);
 }
 
+// 1 where the light reaches world point `p`, 0 behind the occluder's plane.
+fn light_visible(p: vec3<f32>) -> f32 {
+    return select(0.0, 1.0, dot(frame.light_clip.xyz, p) + frame.light_clip.w >= 0.0);
+}
+
 fn make_surface(pos: vec3<f32>, normal: vec3<f32>, tangent: vec4<f32>, albedo: vec3<f32>,
                 thickness: f32) -> Surface {
     var s: Surface;
@@ -67,7 +75,7 @@ fn make_surface(pos: vec3<f32>, normal: vec3<f32>, tangent: vec4<f32>, albedo: v
     let to_light = frame.light_pos.xyz - pos;
     s.light_dist = max(length(to_light), 1e-3);
     s.l = safe_normalize(to_light, s.n);
-    s.light = frame.light_pos.w * frame.light_color.rgb;
+    s.light = frame.light_pos.w * frame.light_color.rgb * light_visible(pos);
     s.albedo = albedo;
     s.thickness = max(thickness, 0.0);
     s.curvature_radius = FLAT_RADIUS_M;

@@ -37,9 +37,12 @@ fn shade(s: Surface) -> vec3<f32> {
     let tex = select(vec3<f32>(1.0), s.albedo, model.misc.w > 0.5);
     let nl = max(dot(s.n, s.l), 0.0);
     let dl = max(s.light_dist, model.misc.z);
-    let translucency = 20.0 * model.misc.y / pow(dl, 2.5);
+    // Eq. 6: f_d (ρ_d cos θ + 20 ρ_ts / d^2.5). The translucency term is its own fall-off
+    // with the light distance d: it scales the light's intensity, not the inverse-square
+    // irradiance (which would make it d^-4.5).
+    let translucency = 20.0 * model.misc.y / pow(dl, 2.5) * s.light;
     let e0 = irradiance(s);
-    let diffuse = fd * tex * (model.misc.x * nl + translucency) * e0 * INV_PI;
+    let diffuse = fd * tex * (model.misc.x * nl * e0 + translucency) * INV_PI;
     let specular = e0 * nl * ward_specular(s, model.lobe.x, model.lobe.y, model.lobe.z);
     let ambient = frame.ambient.rgb * fd * tex * model.misc.x;
     // As printed f_d can be negative (thick layers): radiance is clamped at 0.

@@ -41,8 +41,7 @@ fn vs_main(v: VertexIn) -> VertexOut {
     return out;
 }
 
-@fragment
-fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
+fn prop_radiance(in: VertexOut) -> vec3<f32> {
     let albedo = textureSample(base_color, base_sampler, in.uv).rgb * material.factor.rgb;
     let n = safe_normalize(in.normal, vec3<f32>(0.0, 1.0, 0.0));
     let to_light = frame.light_pos.xyz - in.world_pos;
@@ -52,5 +51,26 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     let e = frame.light_pos.w * frame.light_color.rgb / (d * d) * max(dot(n, l), 0.0);
     let h = safe_normalize(l + v, n);
     let spec = 0.04 * pow(max(dot(n, h), 0.0), 32.0) * 5.0;
-    return finish(frame.ambient.rgb * albedo + e * (albedo * INV_PI + vec3<f32>(spec)));
+    return frame.ambient.rgb * albedo + e * (albedo * INV_PI + vec3<f32>(spec));
 }
+
+#ifdef SCREEN_SPACE
+// In a frame with the subsurface pass: linear radiance, exit factor 0 (nothing to spread).
+struct SplitOut {
+    @location(0) colour: vec4<f32>,
+    @location(1) spread: vec4<f32>,
+};
+
+@fragment
+fn fs_main(in: VertexOut) -> SplitOut {
+    var out: SplitOut;
+    out.colour = vec4<f32>(prop_radiance(in), 0.0);
+    out.spread = vec4<f32>(0.0);
+    return out;
+}
+#else
+@fragment
+fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
+    return finish(prop_radiance(in));
+}
+#endif

@@ -76,6 +76,12 @@ pub enum Command {
     },
     /// Total diffuse reflectance of every model next to a Monte Carlo reference.
     Sss(cmd::sss::SssArgs),
+    /// Generate the path-traced reference data set (tools/reference/<material>.json).
+    Reference(cmd::reference::ReferenceArgs),
+    /// Radial exitance profile M(r) of a flat medium under a point light, per shading model.
+    Profile(cmd::profile::ProfileArgs),
+    /// Write each composed shader as SPIR-V (NAME.vert.spv / NAME.frag.spv) into a directory.
+    Shaders(cmd::shaders::ShadersArgs),
     /// Self-test: create, present to and drop N window surfaces; print GPU object counts.
     #[command(hide = true)]
     Surfaces {
@@ -115,6 +121,9 @@ pub fn run(cli: Cli) -> Result<(), String> {
         }
         Some(Command::Bench(args)) => cmd::bench::run(args),
         Some(Command::Sss(args)) => cmd::sss::run(args),
+        Some(Command::Reference(args)) => cmd::reference::run(args),
+        Some(Command::Profile(args)) => cmd::profile::run(args),
+        Some(Command::Shaders(args)) => cmd::shaders::run(args),
         Some(Command::Surfaces { count }) => cmd::surfaces::run(count.clamp(1, 1000)),
         Some(Command::Soak(args)) => cmd::soak::run(args),
     }

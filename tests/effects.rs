@@ -10,7 +10,7 @@ use dermis_core::shader::{compose, compose_from, ShaderDefs, MODULES};
 use dermis_core::shading::ShadingModel;
 
 /// The subsurface / skin-shading modules.
-const SKIN_MODULES: [&str; 10] = [
+const SKIN_MODULES: [&str; 12] = [
     "ward",
     "ward_lobe",
     "ward_nd",
@@ -19,7 +19,9 @@ const SKIN_MODULES: [&str; 10] = [
     "oss",
     "oss_nd",
     "burley",
-    "burley_nd",
+    "subsurface",
+    "tabulated",
+    "preintegrated",
     "fresnel",
 ];
 
@@ -69,10 +71,12 @@ fn the_game_builds_exactly_the_pipelines_it_can_reach() {
     let needed = PipelineSet::game();
     assert_eq!(gg.renderer.built_pipelines(), needed);
     assert!(!needed.unlit, "the game never draws the unlit baseline");
-    // One pipeline per reachable model, one for props, one for the UI.
+    // One pipeline per reachable model, one for props, one for the UI, and — because the
+    // menu reaches screen-space models — the props' two-target variant and the subsurface pass.
+    assert!(needed.needs_subsurface_pass() && gg.renderer.has_subsurface_pass());
     assert_eq!(
         after.render_pipelines - before.render_pipelines,
-        needed.models.len() as isize + 2
+        needed.models.len() as isize + 4
     );
 }
 
@@ -84,14 +88,24 @@ fn each_model_composes_exactly_the_effects_it_declares() {
         let e = model.effects();
         assert_eq!(has("ward_lobe"), e.specular, "{model}: specular lobe");
         assert_eq!(
-            has("dipole_nd") || has("oss_nd") || has("burley_nd"),
+            has("dipole_nd") || has("oss_nd") || has("subsurface"),
             e.subsurface,
             "{model}: subsurface"
         );
         assert_eq!(
-            src.contains("translucency"),
+            src.contains("let translucency") || src.contains("sss_slab("),
             e.translucency,
             "{model}: translucency"
+        );
+        assert_eq!(
+            src.contains("fn fs_main(in: VertexOut) -> SplitOut"),
+            e.screen_space,
+            "{model}: screen-space split"
+        );
+        assert_eq!(
+            src.contains("textureSampleLevel(lut"),
+            e.lut,
+            "{model}: LUT"
         );
         // Texture: the model reads the surface's albedo (the sampled texture) in `shade`.
         let shade = &src[src.find("fn shade(").unwrap()..];

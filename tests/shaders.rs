@@ -21,6 +21,12 @@ fn all_shaders() -> Vec<(String, String)> {
         compose("character", &unlit).unwrap(),
     ));
     out.push(("prop".into(), compose("prop", &ShaderDefs::new()).unwrap()));
+    let split = ShaderDefs::new().flag("SCREEN_SPACE");
+    out.push(("prop/split".into(), compose("prop", &split).unwrap()));
+    out.push((
+        "sss_pass".into(),
+        compose("sss_pass", &ShaderDefs::new()).unwrap(),
+    ));
     out.push(("ui".into(), compose("ui", &ShaderDefs::new()).unwrap()));
     out
 }

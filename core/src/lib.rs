@@ -8,12 +8,13 @@
 pub mod anim;
 pub mod asset;
 pub mod camera;
-pub mod flat;
 pub mod game;
 pub mod governor;
 pub mod lifecycle;
 pub mod mc;
 pub mod pool;
+pub mod probe;
+pub mod reference;
 pub mod render;
 pub mod scene;
 pub mod shader;

@@ -1,25 +1,34 @@
-//! `dermis bench shading`: the accuracy-vs-time table (Markdown, JSON, Pareto chart PNG).
+//! `dermis bench shading`: accuracy against cost for every shading model (Markdown, JSON, a
+//! Pareto chart).
 //!
-//! Accuracy: each model renders a flat semi-infinite medium lit by a point light at height h
-//! (the same shaders the game uses, through the character pipeline), and its radial radiance
-//! is compared with the Monte Carlo exitance for the same set-up; and each model's own total
-//! diffuse reflectance with the Monte Carlo's. Cost: GPU time of the close-up character pass
-//! as a ratio to `ward` and to an unlit shader, plus the paper's Table 2 protocol; shader
-//! size as in Table 3.
+//! - **Accuracy**: every scene of the path-traced reference set (`tools/reference/`, both
+//!   acceptance materials) rendered through the real renderer (`dermis_core::probe`) and
+//!   scored with `reference::metric` (mean |ln(model/MC)| over the bins above the MC's noise
+//!   floor; the integrated error; the MC's own relative SE).
+//! - **Cost (a)**: GPU time of a full-screen pass on this adapter (a flat skin patch filling a
+//!   1280x720 target, point light, close-up scale), both passes for screen-space models,
+//!   interleaved rounds, median and paired ratios with 95 % CIs.
+//! - **Cost (b)**: Mali-G52/G57 fragment cycles per pixel from Mesa's compiler
+//!   (`dermis shaders --spirv` + `tools/mali/cycles.sh`), the subsurface pass added for the
+//!   screen-space models, loops weighted by their iteration counts (see [`mali_cost`]).
 
-use std::path::{Path, PathBuf};
+use std::io::IsTerminal;
+use std::path::PathBuf;
+use std::time::{Duration, Instant};
 
-use dermis_core::flat::FlatScene;
-use dermis_core::mc::{self, Medium};
-use dermis_core::render::Gpu;
-use dermis_core::scene::SceneAssets;
-use dermis_core::shader::compose;
-use dermis_core::shading::{material, prediction, Material, ShadingModel};
-use dermis_core::still::{Shot, StillRenderer};
-use indicatif::{ProgressBar, ProgressStyle};
-use serde_json::{json, Value};
+use dermis_core::anim::Pose;
+use dermis_core::probe::{self, Probe};
+use dermis_core::reference::metric::score;
+use dermis_core::reference::{self, ReferenceSet};
+use dermis_core::render::{
+    DrawSet, FrameView, Gpu, Light, Offscreen, PassTimer, Renderer, OFFSCREEN_FORMAT,
+};
+use dermis_core::shading::{subsurface, Material, ShadingModel};
+use glam::{Mat4, Vec3, Vec4};
+use serde_json::{json, Map, Value};
 
-use crate::cmd::gputime::{frame_close_up, time_models};
+use crate::cmd::pareto::{self, aggregate, family, SceneScore};
+use crate::cmd::shaders::{mali_cost, read_cycles};
 use crate::cmd::stats::{median, ratio_ci};
 
 #[derive(clap::Args, Debug)]
@@ -27,372 +36,369 @@ pub struct ShadingArgs {
     /// Output directory (shading.md, shading.json, pareto.png).
     #[arg(long)]
     pub out: PathBuf,
-    /// Photons per channel for each Monte Carlo run.
-    #[arg(long, default_value_t = 20_000)]
-    pub photons: u64,
-    /// Rounds of GPU timing.
+    /// Rounds of GPU timing (each round times every model once, in rotating order).
     #[arg(long, default_value_t = 20)]
     pub rounds: usize,
+    /// Mali cycle counts: `tools/mali/cycles.sh` JSON over `dermis shaders --spirv DIR`
+    /// (default: docs/results/mali-cycles.json; the columns stay empty if that is missing).
+    #[arg(long)]
+    pub mali: Option<PathBuf>,
 }
 
-/// Light height (mm) and radial bins (mm) of the flat-medium comparison.
-const H_MM: f64 = 5.0;
-const EDGES_MM: [f64; 15] = [
-    0.0, 0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 5.0, 6.0, 8.0, 10.0, 12.5, 15.0, 20.0, 25.0,
-];
-/// Radii over which errors are averaged (mm).
-const RANGE_MM: (f64, f64) = (1.0, 20.0);
-/// Light intensity in the flat scene (keeps radiance inside f16's comfortable range).
-const INTENSITY: f32 = 1e-4;
+/// Accepted `--rounds` (a CI needs two).
+pub const ROUNDS: (usize, usize) = (2, 1000);
+/// Target of the cost scene.
+pub const COST_SIZE: (u32, u32) = (1280, 720);
+/// Width of the cost scene's view on the skin (mm): a close-up, 0.2 mm per pixel.
+pub const COST_VIEW_MM: f64 = 256.0;
+/// Mali GPUs reported.
+pub const GPUS: [&str; 2] = ["G52", "G57"];
 
-struct Accuracy {
-    profile_mean: f64,
-    profile_max: f64,
-    integral: f64,
-    total_mean: f64,
-    total_max: f64,
+/// Progress: an indicatif bar on a terminal, else a line on stderr every few seconds.
+struct Progress {
+    bar: Option<indicatif::ProgressBar>,
+    total: u64,
+    done: u64,
+    start: Instant,
+    last: Instant,
 }
 
-fn configs() -> Vec<Material> {
-    let mut out = Vec::new();
-    for base in [material::SKIN1, material::WHITE_COAT] {
-        for eta in [1.0936, 1.4] {
-            for g in [0.0, 0.8] {
-                out.push(Material { eta, g, ..base });
+impl Progress {
+    fn new(total: u64) -> Self {
+        let bar = std::io::stderr().is_terminal().then(|| {
+            let bar = indicatif::ProgressBar::new(total);
+            if let Ok(style) = indicatif::ProgressStyle::with_template(
+                "{msg:32} [{bar:40}] {pos}/{len} {elapsed_precise}",
+            ) {
+                bar.set_style(style);
             }
+            bar.enable_steady_tick(Duration::from_millis(250));
+            bar
+        });
+        let now = Instant::now();
+        Self {
+            bar,
+            total,
+            done: 0,
+            start: now,
+            last: now,
         }
     }
-    out
-}
 
-fn medium(m: &Material, c: usize) -> Medium {
-    Medium {
-        sigma_a: m.sigma_a[c],
-        sigma_s_prime: m.sigma_s_prime[c],
-        g: m.g,
-        eta: m.eta,
-    }
-}
-
-/// SPIR-V words → instruction count (each instruction's first word holds its word count).
-fn spirv_instructions(words: &[u32]) -> usize {
-    let (mut i, mut n) = (5, 0);
-    while i < words.len() {
-        let len = (words[i] >> 16) as usize;
-        if len == 0 {
-            break;
+    fn step(&mut self, msg: &str) {
+        self.done += 1;
+        if let Some(bar) = &self.bar {
+            bar.set_message(msg.to_string());
+            bar.inc(1);
+        } else if self.last.elapsed() >= Duration::from_secs(5) {
+            self.last = Instant::now();
+            eprintln!(
+                "bench shading: {}/{} {msg} ({:.0} s)",
+                self.done,
+                self.total,
+                self.start.elapsed().as_secs_f64()
+            );
         }
-        i += len;
-        n += 1;
     }
-    n
+
+    fn finish(&self) {
+        if let Some(bar) = &self.bar {
+            bar.finish_and_clear();
+        }
+    }
 }
 
-/// (WGSL bytes, SPIR-V bytes, SPIR-V instructions) of the composed character shader.
-pub fn shader_size(model: ShadingModel) -> Result<(usize, usize, usize), String> {
-    let src = compose("character", &model.defs()).map_err(|e| e.to_string())?;
-    let module = naga::front::wgsl::parse_str(&src).map_err(|e| e.emit_to_string(&src))?;
-    let info = naga::valid::Validator::new(
-        naga::valid::ValidationFlags::all(),
-        naga::valid::Capabilities::empty(),
-    )
-    .validate(&module)
-    .map_err(|e| e.emit_to_string(&src))?;
-    let words =
-        naga::back::spv::write_vec(&module, &info, &naga::back::spv::Options::default(), None)
-            .map_err(|e| e.to_string())?;
-    Ok((src.len(), words.len() * 4, spirv_instructions(&words)))
+/// The checks that need no GPU: rounds, output directory, reference files, Mali file.
+fn prepare(args: &ShadingArgs) -> Result<(Vec<(Material, ReferenceSet)>, Option<Value>), String> {
+    if !(ROUNDS.0..=ROUNDS.1).contains(&args.rounds) {
+        return Err(format!(
+            "--rounds {} out of range ({}..={})",
+            args.rounds, ROUNDS.0, ROUNDS.1
+        ));
+    }
+    std::fs::create_dir_all(&args.out)
+        .map_err(|e| format!("cannot create {}: {e}", args.out.display()))?;
+    let dir = reference::default_dir();
+    let sets = reference::acceptance_materials()
+        .into_iter()
+        .map(|m| ReferenceSet::load(&reference::file_for(&dir, m.name)).map(|s| (m, s)))
+        .collect::<Result<Vec<_>, _>>()?;
+    let mali = match &args.mali {
+        Some(path) => Some(read_cycles(path)?),
+        None => {
+            let local = PathBuf::from("docs/results/mali-cycles.json");
+            let source = PathBuf::from(concat!(
+                env!("CARGO_MANIFEST_DIR"),
+                "/docs/results/mali-cycles.json"
+            ));
+            [local, source]
+                .iter()
+                .find(|p| p.is_file())
+                .map(|p| read_cycles(p))
+                .transpose()?
+        }
+    };
+    Ok((sets, mali))
 }
 
 pub fn run(args: ShadingArgs) -> Result<(), String> {
-    std::fs::create_dir_all(&args.out).map_err(|e| format!("{}: {e}", args.out.display()))?;
+    let (sets, mali) = prepare(&args)?;
     let gpu = Gpu::headless().map_err(|e| e.to_string())?;
-    let configs = configs();
     let models = ShadingModel::ALL;
-    let steps = (configs.len() * (models.len() + 1) + args.rounds + 10) as u64;
-    let bar = ProgressBar::new(steps);
-    bar.set_style(
-        ProgressStyle::with_template("{msg:28} [{bar:40}] {pos}/{len} {elapsed}")
-            .map_err(|e| e.to_string())?,
-    );
+    let scenes: usize = sets.iter().map(|(_, s)| s.entries.len()).sum();
+    let mut progress = Progress::new((scenes * models.len() + args.rounds + 2) as u64);
 
-    // Accuracy.
-    let mut flat = FlatScene::new(&gpu, 30.0)?;
-    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
-    let mut errors: Vec<Vec<Accuracy>> = models.iter().map(|_| Vec::new()).collect();
-    let mut per_config = Vec::new();
-    for (ci, m) in configs.iter().enumerate() {
-        bar.set_message(format!("{} η={} g={}", m.name, m.eta, m.g));
-        let mut expected = vec![[0.0f64; 3]; EDGES_MM.len() - 1];
-        let mut total = [0.0f64; 3];
-        let entered = 1.0 / (1.0 - mc::fresnel::fresnel(1.0, m.eta).0);
-        for c in 0..3 {
-            let seed = 1000 + ci as u64 * 10 + c as u64;
-            let profile = mc::point_light_profile(
-                &medium(m, c),
-                H_MM,
-                &EDGES_MM,
-                args.photons,
-                seed,
-                threads,
-            );
-            for (b, v) in profile.values.iter().enumerate() {
-                // L = M/π with M = M_MC [mm⁻²] · 1e6 [mm²/m²] · 4π I.
-                expected[b][c] = v * 1e6 * 4.0 * INTENSITY as f64;
+    // Accuracy: per model, every scene of every material.
+    let mut scores: Vec<Vec<SceneScore>> = models.iter().map(|_| Vec::new()).collect();
+    let mut probe = Probe::new(&gpu);
+    for (material, set) in &sets {
+        for entry in &set.entries {
+            for (i, &model) in models.iter().enumerate() {
+                let result = probe
+                    .render(&gpu, model, material, &entry.scene, &entry.edges)
+                    .map(|rendered| score(&rendered, entry));
+                scores[i].push(SceneScore {
+                    material: material.name,
+                    scene: entry.scene,
+                    result,
+                });
+                progress.step(&format!("{} {}", material.name, entry.scene.label()));
             }
-            total[c] = mc::total_reflectance(&medium(m, c), args.photons, seed + 5, threads).mean
-                * entered;
         }
-        bar.inc(1);
-        let mut row = serde_json::Map::new();
-        for (mi, &model) in models.iter().enumerate() {
-            let rendered = flat.radial_radiance(&gpu, model, m, H_MM, INTENSITY, &EDGES_MM);
-            let mut rels = Vec::new();
-            let (mut int_r, mut int_e) = ([0.0; 3], [0.0; 3]);
-            for (b, w) in EDGES_MM.windows(2).enumerate() {
-                let mid = 0.5 * (w[0] + w[1]);
-                let area = std::f64::consts::PI * (w[1] * w[1] - w[0] * w[0]);
-                for c in 0..3 {
-                    int_r[c] += rendered[b][c] * area;
-                    int_e[c] += expected[b][c] * area;
-                    if mid >= RANGE_MM.0 && mid <= RANGE_MM.1 && expected[b][c] > 0.0 {
-                        rels.push((rendered[b][c] / expected[b][c] - 1.0).abs());
-                    }
-                }
-            }
-            let predicted = prediction::total_reflectance(model, m, None);
-            let tot: Vec<f64> = (0..3)
-                .map(|c| (predicted[c] / total[c] - 1.0).abs())
-                .collect();
-            let acc = Accuracy {
-                profile_mean: rels.iter().sum::<f64>() / rels.len().max(1) as f64,
-                profile_max: rels.iter().copied().fold(0.0, f64::max),
-                integral: (0..3)
-                    .map(|c| (int_r[c] / int_e[c] - 1.0).abs())
-                    .sum::<f64>()
-                    / 3.0,
-                total_mean: tot.iter().sum::<f64>() / 3.0,
-                total_max: tot.iter().copied().fold(0.0, f64::max),
-            };
-            row.insert(
-                model.name().into(),
-                json!({"profile_mean_rel_err": acc.profile_mean, "profile_max_rel_err": acc.profile_max,
-                       "integral_rel_err": acc.integral, "total_reflectance": predicted,
-                       "total_mean_rel_err": acc.total_mean}),
-            );
-            errors[mi].push(acc);
-            bar.inc(1);
-        }
-        per_config.push(
-            json!({"material": m.name, "eta": m.eta, "g": m.g, "mc_total": total, "models": row}),
-        );
     }
+    drop(probe);
 
-    // Cost.
-    bar.set_message("GPU time (close-up pass)");
-    let assets = SceneAssets::load(&crate::paths::assets_dir(), None).map_err(|e| e.to_string())?;
-    let mut still = StillRenderer::new(&gpu, &assets, 1280, 720)?;
-    let mut close = Shot {
-        clip: 1,
-        time: 0.2,
-        props: false,
-        ..Shot::new(ShadingModel::Ward, material::SKIN1)
-    };
-    let coverage = frame_close_up(&gpu, &mut still, &assets, &mut close, 0.4)?;
-    still.setup(&gpu, &assets, &close)?;
+    // Cost (a): this adapter's GPU time of the full-screen pass.
+    let material = sets[0].0;
+    let cost = CostScene::new(&gpu, &material)?;
+    progress.step("cost scene");
+    let coverage = cost.coverage(&gpu);
     let mut timed: Vec<Option<ShadingModel>> = models.iter().map(|m| Some(*m)).collect();
     timed.push(None);
-    let times = if gpu.timestamps {
-        time_models(&gpu, &mut still, &timed, args.rounds, || bar.inc(1))?
-    } else {
-        vec![Vec::new(); timed.len()]
-    };
-    // The paper's protocol (Table 2): the animated character, a sample every 30 frames, the
-    // peak of 3 consecutive frames at each of 10 samples, averaged.
-    bar.set_message("GPU time (paper protocol)");
-    let mut paper = vec![Vec::new(); timed.len()];
-    if gpu.timestamps {
-        for sample in 0..10 {
-            let t = sample as f32 * 30.0 / 60.0;
-            still.setup(
-                &gpu,
-                &assets,
-                &Shot {
-                    time: t % 0.7,
-                    ..close
-                },
-            )?;
-            for (i, m) in timed.iter().enumerate() {
-                let peak = (0..3)
-                    .filter_map(|_| still.time_character_pass(&gpu, *m))
-                    .fold(0.0, f64::max);
-                paper[i].push(peak);
+    let mut times = vec![Vec::new(); timed.len()];
+    if cost.timer.is_some() {
+        for m in &timed {
+            for _ in 0..2 {
+                cost.time(&gpu, *m);
             }
-            bar.inc(1);
+        }
+        for r in 0..args.rounds {
+            for k in 0..timed.len() {
+                let i = (k + r) % timed.len();
+                times[i].push(cost.time(&gpu, timed[i]).ok_or("timestamp read failed")?);
+            }
+            progress.step("GPU time (full-screen pass)");
         }
     }
-    bar.finish_and_clear();
+    progress.finish();
 
-    let label = if gpu.is_cpu() {
-        "CPU-rasterizer ratios (software Vulkan), not phone GPU ratios"
-    } else {
-        "GPU timestamp ratios"
-    };
-    let ward = times[0].clone();
-    let unlit = times[timed.len() - 1].clone();
-    let mut rows = Vec::new();
-    for (i, model) in timed.iter().enumerate() {
-        let name = model.map_or("unlit", |m| m.name());
-        let (r_ward, lo, hi) = ratio_ci(&times[i], &ward);
-        let (r_unlit, ulo, uhi) = ratio_ci(&times[i], &unlit);
-        let size = shader_size(model.unwrap_or(ShadingModel::Ward))
-            .ok()
-            .filter(|_| model.is_some());
-        let acc = model.map(|_| &errors[i]);
-        let mean =
-            |f: fn(&Accuracy) -> f64| acc.map(|a| a.iter().map(f).sum::<f64>() / a.len() as f64);
-        let max = |f: fn(&Accuracy) -> f64| acc.map(|a| a.iter().map(f).fold(0.0, f64::max));
-        rows.push(json!({
-            "model": name,
-            "profile_mean_rel_err": mean(|a| a.profile_mean),
-            "profile_max_rel_err": max(|a| a.profile_max),
-            "integral_mean_rel_err": mean(|a| a.integral),
-            "total_mean_rel_err": mean(|a| a.total_mean),
-            "total_max_rel_err": max(|a| a.total_max),
-            "gpu_ms_median": median(&times[i]),
-            "ratio_to_ward": r_ward, "ratio_to_ward_ci95": [lo, hi],
-            "ratio_to_unlit": r_unlit, "ratio_to_unlit_ci95": [ulo, uhi],
-            "paper_protocol_ms": if paper[i].is_empty() { f64::NAN } else { paper[i].iter().sum::<f64>() / paper[i].len() as f64 },
-            "wgsl_bytes": size.map(|s| s.0), "spirv_bytes": size.map(|s| s.1), "spirv_instructions": size.map(|s| s.2),
-        }));
-    }
-    let report = json!({
-        "adapter": gpu.adapter_name(),
-        "label": label,
-        "light_height_mm": H_MM,
-        "error_radius_range_mm": [RANGE_MM.0, RANGE_MM.1],
-        "photons_per_channel": args.photons,
-        "close_up_coverage": coverage,
-        "rounds": args.rounds,
-        "models": rows,
-        "configs": per_config,
-    });
+    let report = build_report(&gpu, &args, &sets, &scores, &times, coverage, mali.as_ref());
     let json_path = args.out.join("shading.json");
-    std::fs::write(
-        &json_path,
-        serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?,
-    )
-    .map_err(|e| format!("{}: {e}", json_path.display()))?;
-    let md = markdown(&report);
-    std::fs::write(args.out.join("shading.md"), &md).map_err(|e| e.to_string())?;
-    pareto_png(&report, &args.out.join("pareto.png"))?;
+    let text = serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?;
+    std::fs::write(&json_path, text).map_err(|e| format!("{}: {e}", json_path.display()))?;
+    let md = pareto::markdown(&report);
+    let md_path = args.out.join("shading.md");
+    std::fs::write(&md_path, &md).map_err(|e| format!("{}: {e}", md_path.display()))?;
+    let png = args.out.join("pareto.png");
+    pareto::chart(&report, &png)?;
     println!("{md}");
-    println!("wrote {}, shading.md and pareto.png", json_path.display());
+    println!(
+        "wrote {}, {} and {}",
+        json_path.display(),
+        md_path.display(),
+        png.display()
+    );
     Ok(())
 }
 
-fn f(v: &Value, digits: usize) -> String {
-    v.as_f64().map_or("–".into(), |x| {
-        if x.is_finite() {
-            format!("{x:.digits$}")
+/// The cost scene: a skin patch filling the target, seen from straight above.
+struct CostScene {
+    renderer: Renderer,
+    target: Offscreen,
+    timer: Option<PassTimer>,
+}
+
+impl CostScene {
+    fn new(gpu: &Gpu, material: &Material) -> Result<Self, String> {
+        let (w, h) = COST_SIZE;
+        let mut renderer = Renderer::new(gpu, OFFSCREEN_FORMAT);
+        let target = Offscreen::new(gpu, w, h);
+        let half_w = (COST_VIEW_MM / 2000.0) as f32;
+        let half_h = half_w * h as f32 / w as f32;
+        // 5 mm thick (translucency terms see a thin part), reaching well past the view.
+        let model = probe::plane_model(2.0 * half_w, 0.005);
+        renderer.load_character(gpu, &model, material)?;
+        let mut pose = Pose::new(&model);
+        pose.update_world(&model);
+        renderer.update_character(&gpu.queue, &model, &pose, Mat4::IDENTITY);
+        let view = glam::camera::rh::view::look_at_mat4(Vec3::Y, Vec3::ZERO, Vec3::Z);
+        let proj = glam::camera::rh::proj::directx::orthographic(
+            -half_w, half_w, -half_h, half_h, 0.01, 10.0,
+        );
+        renderer.prepare(
+            &gpu.queue,
+            &FrameView {
+                view_proj: proj * view,
+                camera_pos: Vec3::Y,
+                light: Light {
+                    position: Vec3::new(0.02, 0.05, 0.01),
+                    intensity: 0.01,
+                    color: Vec3::ONE,
+                    ambient: Vec3::splat(0.02),
+                    clip: Vec4::ZERO,
+                },
+                exposure: 1.0,
+            },
+        );
+        let timer = PassTimer::new(&gpu.device, &gpu.queue);
+        Ok(Self {
+            renderer,
+            target,
+            timer,
+        })
+    }
+
+    fn encode(&self, gpu: &Gpu, shading: Option<ShadingModel>, character: bool, timed: bool) {
+        let mut encoder = gpu
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+        let draw = DrawSet {
+            shading,
+            character,
+            props: false,
+        };
+        let timer = self.timer.as_ref().filter(|_| timed);
+        let t = &self.target;
+        self.renderer
+            .encode(&mut encoder, &t.targets, &t.view, draw, None, timer);
+        if let Some(timer) = timer {
+            timer.resolve(&mut encoder);
         } else {
-            "–".into()
+            t.copy_out(&mut encoder);
         }
+        gpu.queue.submit([encoder.finish()]);
+    }
+
+    /// GPU time (ms) of one frame drawn with `shading` (`None`: unlit).
+    fn time(&self, gpu: &Gpu, shading: Option<ShadingModel>) -> Option<f64> {
+        self.encode(gpu, shading, true, true);
+        self.timer.as_ref()?.read_ms(&gpu.device)
+    }
+
+    /// Fraction of the target the skin covers (Ward against the empty frame).
+    fn coverage(&self, gpu: &Gpu) -> f64 {
+        self.encode(gpu, None, false, false);
+        let empty = self.target.read(gpu);
+        self.encode(gpu, Some(ShadingModel::Ward), true, false);
+        let drawn = self.target.read(gpu);
+        let n = empty.pixels.len() / 4;
+        let covered = (0..n)
+            .filter(|&i| {
+                (0..3).any(|c| empty.pixels[4 * i + c].abs_diff(drawn.pixels[4 * i + c]) > 2)
+            })
+            .count();
+        covered as f64 / n.max(1) as f64
+    }
+}
+
+/// Rings of `model`'s kernel (all, and those the subsurface pass samples at the cost
+/// scene's scale: a ring whose outer radius is under half a pixel is taken at the pixel).
+fn kernel_rings(model: ShadingModel, material: &Material) -> (usize, usize) {
+    let mm_per_px = COST_VIEW_MM / COST_SIZE.0 as f64;
+    model.kernel(material).map_or((0, 0), |k| {
+        let sampled = k
+            .rings
+            .iter()
+            .filter(|(_, outer)| outer / mm_per_px >= 0.5)
+            .count();
+        (k.rings.len(), sampled)
     })
 }
 
-fn pct(v: &Value) -> String {
-    v.as_f64()
-        .map_or("–".into(), |x| format!("{:.1} %", x * 100.0))
-}
-
-pub fn markdown(report: &Value) -> String {
-    let mut s = format!(
-        "Adapter: {} — {}. Close-up character pass at 1280x720 (character covers {:.0} %), {} rounds. \
-         Errors: flat semi-infinite medium, point light at h = {} mm, radii {}–{} mm, over skin1 and white coat × \
-         η ∈ {{1.0936, 1.4}} × g ∈ {{0, 0.8}}; Monte Carlo {} photons per channel.\n\n",
-        report["adapter"].as_str().unwrap_or("?"),
-        report["label"].as_str().unwrap_or(""),
-        report["close_up_coverage"].as_f64().unwrap_or(0.0) * 100.0,
-        report["rounds"],
-        report["light_height_mm"],
-        report["error_radius_range_mm"][0],
-        report["error_radius_range_mm"][1],
-        report["photons_per_channel"],
-    );
-    s.push_str("| model | profile err mean | profile err max | total R err mean | total R err max | GPU ms | × ward (95 % CI) | × unlit | Table 2 ms | WGSL B | SPIR-V B | SPIR-V instr |\n");
-    s.push_str("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
-    for r in report["models"].as_array().into_iter().flatten() {
-        s.push_str(&format!(
-            "| {} | {} | {} | {} | {} | {} | {} ({}–{}) | {} | {} | {} | {} | {} |\n",
-            r["model"].as_str().unwrap_or("?"),
-            pct(&r["profile_mean_rel_err"]),
-            pct(&r["profile_max_rel_err"]),
-            pct(&r["total_mean_rel_err"]),
-            pct(&r["total_max_rel_err"]),
-            f(&r["gpu_ms_median"], 2),
-            f(&r["ratio_to_ward"], 3),
-            f(&r["ratio_to_ward_ci95"][0], 3),
-            f(&r["ratio_to_ward_ci95"][1], 3),
-            f(&r["ratio_to_unlit"], 3),
-            f(&r["paper_protocol_ms"], 2),
-            r["wgsl_bytes"],
-            r["spirv_bytes"],
-            r["spirv_instructions"],
-        ));
+fn build_report(
+    gpu: &Gpu,
+    args: &ShadingArgs,
+    sets: &[(Material, ReferenceSet)],
+    scores: &[Vec<SceneScore>],
+    times: &[Vec<f64>],
+    coverage: f64,
+    mali: Option<&Value>,
+) -> Value {
+    let mut families: Vec<String> = Vec::new();
+    for (_, set) in sets {
+        for e in &set.entries {
+            let f = family(&e.scene);
+            if !families.contains(&f) {
+                families.push(f);
+            }
+        }
     }
-    s
-}
-
-/// Error (log scale) against GPU cost, one labelled point per model.
-fn pareto_png(report: &Value, path: &Path) -> Result<(), String> {
-    use plotters::prelude::*;
-    crate::cmd::chart::ensure_font();
-    let points: Vec<(String, f64, f64)> = report["models"]
-        .as_array()
-        .into_iter()
-        .flatten()
-        .filter_map(|r| {
-            let e = r["profile_mean_rel_err"].as_f64()?.max(1e-4);
-            let c = r["ratio_to_ward"].as_f64()?;
-            (e.is_finite() && c.is_finite())
-                .then(|| (r["model"].as_str().unwrap_or("?").to_string(), c, e))
-        })
-        .collect();
-    let root = BitMapBackend::new(path, (900, 600)).into_drawing_area();
-    root.fill(&WHITE).map_err(|e| e.to_string())?;
-    let (cmin, cmax) = points
-        .iter()
-        .fold((f64::MAX, f64::MIN), |a, p| (a.0.min(p.1), a.1.max(p.1)));
-    let (emin, emax) = points
-        .iter()
-        .fold((f64::MAX, f64::MIN), |a, p| (a.0.min(p.2), a.1.max(p.2)));
-    let mut chart = ChartBuilder::on(&root)
-        .caption(
-            "Accuracy vs GPU cost (rendered flat-medium profile vs Monte Carlo)",
-            ("sans-serif", 20),
-        )
-        .margin(20)
-        .x_label_area_size(45)
-        .y_label_area_size(70)
-        .build_cartesian_2d(
-            (cmin * 0.9)..(cmax * 1.1),
-            (emin * 0.5..emax * 2.0).log_scale(),
-        )
-        .map_err(|e| e.to_string())?;
-    chart
-        .configure_mesh()
-        .x_desc("GPU time of the close-up character pass / ward")
-        .y_desc("mean relative error of the rendered profile")
-        .draw()
-        .map_err(|e| e.to_string())?;
-    chart
-        .draw_series(points.iter().map(|(name, c, e)| {
-            EmptyElement::at((*c, *e))
-                + Circle::new((0, 0), 5, BLUE.filled())
-                + Text::new(name.clone(), (8, -8), ("sans-serif", 15))
-        }))
-        .map_err(|e| e.to_string())?;
-    root.present().map_err(|e| e.to_string())?;
-    Ok(())
+    let material = &sets[0].0;
+    let n = times.len();
+    let (ward, unlit) = (&times[0], &times[n - 1]);
+    let mut rows = Vec::new();
+    for i in 0..n {
+        let model = ShadingModel::ALL.get(i).copied();
+        let (r_ward, lo, hi) = ratio_ci(&times[i], ward);
+        let (r_unlit, ulo, uhi) = ratio_ci(&times[i], unlit);
+        let rings = model.map_or((0, 0), |m| kernel_rings(m, material));
+        let mut m_json = Map::new();
+        for g in GPUS {
+            let c = mali.and_then(|v| mali_cost(v, model, g, rings, subsurface::ANGLES as usize));
+            m_json.insert(
+                g.into(),
+                json!({"static": c.map(|c| c.0), "per_pixel": c.map(|c| c.1)}),
+            );
+        }
+        let mut row = json!({
+            "model": model.map_or("unlit", |m| m.name()),
+            "screen_space": model.is_some_and(|m| m.effects().screen_space),
+            "lavapipe_ms_median": median(&times[i]),
+            "ratio_to_ward": r_ward, "ratio_to_ward_ci95": [lo, hi],
+            "ratio_to_unlit": r_unlit, "ratio_to_unlit_ci95": [ulo, uhi],
+            "mali": m_json,
+            "sss_rings": {"all": rings.0, "sampled": rings.1},
+        });
+        if let Some(s) = model.map(|_| &scores[i]) {
+            let (fam, overall) = aggregate(s, &families, |e| e.mean_log_all);
+            let (_, integrated) = aggregate(s, &families, |e| e.integrated_all);
+            let (fam_se, se) = aggregate(s, &families, |e| e.ref_rel_se_all);
+            let scenes: Vec<Value> = s
+                .iter()
+                .map(|x| {
+                    json!({"material": x.material, "scene": x.scene.label(),
+                           "result": match &x.result { Ok(e) => json!(e), Err(e) => json!(format!("error: {e}")) }})
+                })
+                .collect();
+            row["error"] = json!({
+                "families": families.iter().cloned().zip(fam).collect::<Map<_, _>>(),
+                "overall": overall, "integrated": integrated,
+                "mc_rel_se": families.iter().cloned().zip(fam_se).collect::<Map<_, _>>(),
+                "mc_rel_se_overall": se, "scenes": scenes,
+            });
+        }
+        rows.push(row);
+    }
+    let ward_g57 = rows[0]["mali"]["G57"]["per_pixel"].as_f64();
+    for row in &mut rows {
+        let r = row["mali"]["G57"]["per_pixel"]
+            .as_f64()
+            .zip(ward_g57)
+            .map(|(a, b)| a / b);
+        row["mali"]["G57_ratio_to_ward"] = json!(r);
+    }
+    json!({
+        "adapter": gpu.adapter_name(),
+        "label": if gpu.is_cpu() { "CPU-rasterizer ratios (software Vulkan), not phone GPU ratios" } else { "GPU timestamp ratios" },
+        "cost_scene": {"size": [COST_SIZE.0, COST_SIZE.1], "view_mm": COST_VIEW_MM,
+                       "mm_per_pixel": COST_VIEW_MM / COST_SIZE.0 as f64, "coverage": coverage,
+                       "material": material.name, "timestamps": !times[0].is_empty()},
+        "rounds": args.rounds,
+        "references": sets.iter().map(|(m, s)| json!({"material": m.name, "eta": s.eta, "g": s.g,
+            "photons": s.entries.first().map(|e| e.photons), "scenes": s.entries.len()})).collect::<Vec<_>>(),
+        "families": families,
+        "sss_angles": subsurface::ANGLES,
+        "mali": mali.map(|v| json!({"compiler": v["compiler"], "mesa_debian_version": v["mesa_debian_version"], "options": v["options"]})),
+        "models": rows,
+    })
 }

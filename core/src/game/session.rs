@@ -293,7 +293,7 @@ mod tests {
 
     #[test]
     fn the_player_is_visible_and_things_behind_the_camera_are_not() {
-        let model = crate::flat::plane_model(0.5, 0.01);
+        let model = crate::probe::plane_model(0.5, 0.01);
         let mut s = Session::new(&model, 1, None, true);
         let vp = Viewport {
             width: 640,

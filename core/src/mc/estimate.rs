@@ -88,6 +88,8 @@ pub(crate) struct Tally {
     /// Weight leaving through the bottom surface without any scattering event (collimated
     /// transmittance of a slab).
     pub unscattered: Acc,
+    /// Weight that entered the medium (sphere only, where entry weights vary per photon).
+    pub entered: Acc,
     pub refl_bins: Vec<Acc>,
     pub trans_bins: Vec<Acc>,
     /// Weight arriving at the surface from the source, before Fresnel (point light only).
@@ -113,6 +115,7 @@ impl Tally {
         self.capped.merge(&o.capped);
         self.cone.merge(&o.cone);
         self.unscattered.merge(&o.unscattered);
+        self.entered.merge(&o.entered);
         for (a, b) in self.refl_bins.iter_mut().zip(&o.refl_bins) {
             a.merge(b);
         }

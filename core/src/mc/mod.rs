@@ -49,24 +49,41 @@
 //!   against the exact bin average [`point_light_irradiance_bins`].
 //! - **Cone detector** (reciprocity checks): weight leaving the top with outside exit cosine
 //!   ≥ `cone_mu`.
+//! - **Oblique beam** ([`Source::Collimated`], [`oblique_reflectance`]): a pencil beam at the
+//!   origin with incidence cosine μ travelling toward −x.
+//! - **Shadow edge** ([`shadow_edge`], `edge.rs`): exitance per unit surface irradiance
+//!   averaged over strips in x, for a directional light lighting x > 0 only; one oblique
+//!   pencil beam gives it exactly by translation invariance.
+//! - **Sphere** ([`sphere`], `sphere.rs`): a sphere under a directional beam, exitance per
+//!   unit beam irradiance in bands of polar angle from the light.
+//! - **Backlit slab** ([`slab_diffuse_transmittance`]): a slab's transmittance less its
+//!   unscattered part.
 //!
 //! # Determinism
 //! Photons run in fixed batches of [`estimate::BATCH_SIZE`]; batch b draws from its own
 //! xoshiro256++ stream seeded from (seed, b). Threads take batches dynamically, but batch
 //! tallies are summed in batch order, so results are bit-identical for any `threads`.
 
+pub mod edge;
 pub mod estimate;
 pub mod fresnel;
 pub mod phase;
 pub mod rng;
+pub mod sphere;
 pub mod walk;
 
 pub(crate) mod chandrasekhar;
 pub(crate) mod dipole_check;
 #[cfg(test)]
+mod scene_tests;
+#[cfg(test)]
 mod tests;
 
+pub use edge::{
+    oblique_reflectance, shadow_edge, shadow_edge_with, slab_diffuse_transmittance, EdgeResults,
+};
 pub use estimate::{Estimate, BATCH_SIZE};
+pub use sphere::{sphere, sphere_with, SphereResults};
 
 use std::f64::consts::PI;
 
@@ -132,6 +149,9 @@ pub enum Source {
     Cone { mu_min: f64 },
     /// Isotropic unit-power point light at (0, 0, −h), h > 0 in mm.
     PointLight { h: f64 },
+    /// Collimated pencil beam at the origin with incidence cosine `mu` ∈ (0, 1]; its
+    /// horizontal direction of travel is −x (`mu = 1` is [`Source::Normal`]).
+    Collimated { mu: f64 },
 }
 
 /// What to detect besides the totals.
@@ -231,6 +251,12 @@ pub fn simulate(
 ) -> Results {
     if let Source::PointLight { h } = source {
         assert!(h > 0.0, "mc: point light height must be positive");
+    }
+    if let Source::Collimated { mu } = source {
+        assert!(
+            mu > 0.0 && mu <= 1.0,
+            "mc: collimated incidence cosine must be in (0, 1]"
+        );
     }
     for w in det.edges.windows(2) {
         assert!(

@@ -13,6 +13,16 @@ pub const ROULETTE_THRESHOLD: f64 = 1e-4;
 /// … and the photon survives with this probability (its weight divided by it).
 pub const ROULETTE_SURVIVAL: f64 = 0.1;
 
+/// How top-surface exits are binned by `edges`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum ExitBinning {
+    /// Annuli in the distance r from the origin.
+    Radial,
+    /// Shadow-edge strips in x (see `edge.rs`): an exit at offset Δx adds to strip [a, b) the
+    /// fraction of it lit by a half-plane x > 0 of sources, clamp((b − Δx)/(b − a), 0, 1).
+    EdgeStrips,
+}
+
 pub(crate) struct Walker<'a> {
     pub sigma_t: f64,
     pub albedo: f64,
@@ -24,6 +34,7 @@ pub(crate) struct Walker<'a> {
     pub edges: &'a [f64],
     pub cone_mu: f64,
     pub max_events: u64,
+    pub binning: ExitBinning,
 }
 
 impl<'a> Walker<'a> {
@@ -64,6 +75,7 @@ impl<'a> Walker<'a> {
             edges,
             cone_mu,
             max_events,
+            binning: ExitBinning::Radial,
         }
     }
 
@@ -76,11 +88,22 @@ impl<'a> Walker<'a> {
         Some(e.partition_point(|&x| x <= r) - 1)
     }
 
+    /// Adds an exit at offset `dx` with weight `w` to every shadow-edge strip it lights.
+    fn add_edge_strips(&self, dx: f64, w: f64, t: &mut Tally) {
+        for (k, e) in self.edges.windows(2).enumerate() {
+            let frac = ((e[1] - dx) / (e[1] - e[0])).clamp(0.0, 1.0);
+            if frac > 0.0 {
+                t.refl_bins[k].add(w * frac);
+            }
+        }
+    }
+
     /// Launches and follows one photon, adding its contributions to `t`.
     pub fn photon(&self, rng: &mut Rng, t: &mut Tally) {
         // Direction of incidence outside (cos θ toward +z), entry point, weight before Fresnel.
         let (mu, r0, w0, random_azimuth) = match self.source {
             Source::Normal => (1.0, 0.0, 1.0, false),
+            Source::Collimated { mu } => (mu, 0.0, 1.0, false),
             Source::Diffuse => (rng.uniform_pos().sqrt(), 0.0, 1.0, true),
             Source::Cone { mu_min } => {
                 let m2 = mu_min * mu_min;
@@ -104,6 +127,9 @@ impl<'a> Walker<'a> {
             let phi = 2.0 * PI * rng.uniform();
             let (s, c) = phi.sin_cos();
             (c, s)
+        } else if let Source::Collimated { .. } = self.source {
+            // The oblique beam travels toward −x.
+            (-1.0, 0.0)
         } else {
             (1.0, 0.0)
         };
@@ -161,7 +187,9 @@ impl<'a> Walker<'a> {
                     if cos_out >= self.cone_mu {
                         t.cone.add(w);
                     }
-                    if let Some(b) = self.bin(rr) {
+                    if self.binning == ExitBinning::EdgeStrips {
+                        self.add_edge_strips(x, w, t);
+                    } else if let Some(b) = self.bin(rr) {
                         t.refl_bins[b].add(w);
                     }
                 } else {

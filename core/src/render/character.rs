@@ -23,23 +23,35 @@ struct SkinGpu {
     palette: Vec<Mat4>,
 }
 
+/// One shading model's constants: its uniform, its LUT (pre-integrated models) and their
+/// bind group.
+struct ModelGpu {
+    model: ShadingModel,
+    buffer: wgpu::Buffer,
+    lut: Option<wgpu::Texture>,
+    group: wgpu::BindGroup,
+}
+
 pub struct CharacterGpu {
     parts: Vec<Part>,
     skins: Vec<SkinGpu>,
-    params: Vec<(ShadingModel, wgpu::Buffer, wgpu::BindGroup)>,
+    params: Vec<ModelGpu>,
     unlit_params: wgpu::BindGroup,
     /// Triangles drawn per frame.
     pub triangles: u32,
 }
 
 impl CharacterGpu {
-    /// Uploads every skinned mesh of `model`. Errors if it has none.
+    /// Uploads every skinned mesh of `model`, with constants for the shading models in
+    /// `models` only (a model no pipeline can draw gets no buffer, no LUT, no bake). Errors if
+    /// the glTF has no skinned mesh.
     pub fn new(
         device: &wgpu::Device,
         queue: &wgpu::Queue,
         layouts: &Layouts,
         sampler: &wgpu::Sampler,
         model: &Model,
+        models: &[ShadingModel],
     ) -> Result<Self, String> {
         let palette_size = (MAX_JOINTS * 64) as u64;
         let mut skins: Vec<SkinGpu> = Vec::new();
@@ -119,26 +131,57 @@ impl CharacterGpu {
                 mapped_at_creation: false,
             })
         };
-        let bind = |buffer: &wgpu::Buffer| {
+        let lut_sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("LUT"),
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            ..Default::default()
+        });
+        let no_lut = texture::rgba16f(device, (1, 1), "no LUT");
+        texture::write_rgba16f(queue, &no_lut, &[[0.0; 4]]);
+        let bind = |buffer: &wgpu::Buffer, lut: &wgpu::Texture| {
+            let view = lut.create_view(&wgpu::TextureViewDescriptor::default());
             device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("shading model params"),
                 layout: &layouts.model,
-                entries: &[wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: buffer.as_entire_binding(),
-                }],
+                entries: &[
+                    wgpu::BindGroupEntry {
+                        binding: 0,
+                        resource: buffer.as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 1,
+                        resource: wgpu::BindingResource::TextureView(&view),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 2,
+                        resource: wgpu::BindingResource::Sampler(&lut_sampler),
+                    },
+                ],
             })
         };
-        let params = ShadingModel::ALL
+        let params = models
             .iter()
             .map(|&m| {
                 let buffer = param_buffer(m.name());
-                let group = bind(&buffer);
-                (m, buffer, group)
+                let lut = m.effects().lut.then(|| {
+                    let size = (
+                        crate::shading::preintegrated::LUT_U as u32,
+                        crate::shading::preintegrated::LUT_V as u32,
+                    );
+                    texture::rgba16f(device, size, m.name())
+                });
+                let group = bind(&buffer, lut.as_ref().unwrap_or(&no_lut));
+                ModelGpu {
+                    model: m,
+                    buffer,
+                    lut,
+                    group,
+                }
             })
             .collect();
         let unlit_buffer = param_buffer("unlit");
-        let unlit_params = bind(&unlit_buffer);
+        let unlit_params = bind(&unlit_buffer, &no_lut);
         Ok(Self {
             parts,
             skins,
@@ -148,11 +191,20 @@ impl CharacterGpu {
         })
     }
 
-    /// Recomputes every model's constants for `material` (when the material changes).
+    /// Recomputes the constants of every model it holds for `material` (when the material
+    /// changes; measured tables are cached per material, see `shading::bake`).
     pub fn set_material(&self, queue: &wgpu::Queue, material: &Material) {
-        for (model, buffer, _) in &self.params {
-            queue.write_buffer(buffer, 0, bytemuck::bytes_of(&model.params(material)));
+        for m in &self.params {
+            queue.write_buffer(&m.buffer, 0, bytemuck::bytes_of(&m.model.params(material)));
+            if let (Some(texture), Some(lut)) = (&m.lut, m.model.lut(material)) {
+                texture::write_rgba16f(queue, texture, &lut.texels);
+            }
         }
+    }
+
+    /// Whether constants for `model` were made.
+    pub fn has_model(&self, model: ShadingModel) -> bool {
+        self.params.iter().any(|m| m.model == model)
     }
 
     /// Computes the joint palettes for `pose` placed at `world` and uploads them.
@@ -166,17 +218,12 @@ impl CharacterGpu {
         }
     }
 
-    pub(super) fn params_group(&self, model: Option<ShadingModel>) -> &wgpu::BindGroup {
+    /// The bind group of `model`'s constants (`None`: the unlit baseline); `None` if the
+    /// model was not loaded.
+    pub(super) fn params_group(&self, model: Option<ShadingModel>) -> Option<&wgpu::BindGroup> {
         match model {
-            Some(m) => {
-                &self
-                    .params
-                    .iter()
-                    .find(|(p, _, _)| *p == m)
-                    .expect("all models have params")
-                    .2
-            }
-            None => &self.unlit_params,
+            Some(m) => self.params.iter().find(|p| p.model == m).map(|p| &p.group),
+            None => Some(&self.unlit_params),
         }
     }
 

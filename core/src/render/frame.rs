@@ -10,6 +10,9 @@ pub struct Light {
     pub intensity: f32,
     pub color: Vec3,
     pub ambient: Vec3,
+    /// A world-space plane (xyz·p + w ≥ 0: lit) beyond which a straight occluder shadows the
+    /// light; zero: nothing occludes it.
+    pub clip: glam::Vec4,
 }
 
 impl Default for Light {
@@ -19,6 +22,7 @@ impl Default for Light {
             intensity: 30.0,
             color: Vec3::new(1.0, 0.97, 0.92),
             ambient: Vec3::new(0.10, 0.11, 0.13),
+            clip: glam::Vec4::ZERO,
         }
     }
 }
@@ -33,6 +37,8 @@ pub struct FrameUniform {
     pub ambient: [f32; 4],
     /// x: exposure, y: manual sRGB encode flag, z: raw radiance output flag.
     pub output: [f32; 4],
+    /// The light's clip plane (zero: none).
+    pub light_clip: [f32; 4],
 }
 
 impl FrameUniform {
@@ -56,6 +62,7 @@ impl FrameUniform {
                 f32::from(u8::from(raw)),
                 0.0,
             ],
+            light_clip: light.clip.to_array(),
         }
     }
 }

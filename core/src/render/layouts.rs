@@ -1,6 +1,6 @@
 //! Bind group layouts, created once.
 
-/// Group 0: the frame uniform. Group 1: a shading model's parameters. Group 2: the skinned
+/// Group 0: the frame uniform. Group 1: a shading model's parameters (and LUT). Group 2: the skinned
 /// object (joint palette, base colour, sampler). Props: group 1 is their material.
 pub struct Layouts {
     pub frame: wgpu::BindGroupLayout,
@@ -55,7 +55,15 @@ impl Layouts {
         };
         Self {
             frame: make("frame", &[uniform(0, vf)]),
-            model: make("shading model", &[uniform(0, wgpu::ShaderStages::FRAGMENT)]),
+            // The model's uniform and, for pre-integrated models, their LUT.
+            model: make(
+                "shading model",
+                &[
+                    uniform(0, wgpu::ShaderStages::FRAGMENT),
+                    texture(1),
+                    sampler(2),
+                ],
+            ),
             skinned: make(
                 "skinned object",
                 &[

@@ -1,7 +1,9 @@
 //! The wgpu renderer: GPU context, resources created once at load, and one render pass per
 //! frame (MSAA 4× resolved at the end of the pass, depth never stored — the tile-friendly
 //! default on phones). Tone mapping happens at the end of every fragment shader, so no
-//! second pass is needed.
+//! second pass is needed — except in frames whose character uses a screen-space subsurface
+//! model, which end with the subsurface pass (`sss_pass.rs`); a renderer whose scene cannot
+//! reach such a model has no such pass, pipeline or target.
 
 mod character;
 mod counters;
@@ -13,6 +15,7 @@ mod offscreen;
 mod pipelines;
 mod props;
 mod renderer;
+mod sss_pass;
 mod targets;
 mod texture;
 mod timer;
@@ -26,6 +29,8 @@ pub use offscreen::{f16_to_f32, Offscreen, RgbaImage, OFFSCREEN_FORMAT};
 pub use pipelines::{build_shader_source, CharacterPipelines, PipelineSet};
 pub use props::{PropInstance, PropKind};
 pub use renderer::{DrawSet, FrameView, RenderStats, Renderer};
+pub use sss_pass::SPLIT_FORMAT;
 pub use targets::{Targets, DEPTH_FORMAT, MSAA_SAMPLES};
+pub use texture::f32_to_f16;
 pub use timer::PassTimer;
 pub use ui::{ui_shader_source, ui_vertex_layout, UiRenderer};

@@ -3,6 +3,7 @@
 
 use super::layouts::Layouts;
 use super::mesh::{instance_layout, vertex_layout};
+use super::sss_pass::SPLIT_FORMAT;
 use super::targets::{DEPTH_FORMAT, MSAA_SAMPLES};
 use crate::shader::{compose, ShaderDefs};
 use crate::shading::ShadingModel;
@@ -23,6 +24,11 @@ pub struct PipelineSet {
 }
 
 impl PipelineSet {
+    /// Whether a model in the set needs the screen-space subsurface pass.
+    pub fn needs_subsurface_pass(&self) -> bool {
+        self.models.iter().any(|m| m.effects().screen_space)
+    }
+
     /// Every registry model plus the unlit baseline (tools and benches).
     pub fn everything() -> Self {
         Self {
@@ -71,6 +77,26 @@ impl CharacterPipelines {
 pub struct Pipelines {
     pub character: CharacterPipelines,
     pub prop: wgpu::RenderPipeline,
+    /// Props in a frame with the subsurface pass (two linear targets); only when the set
+    /// needs that pass.
+    pub prop_split: Option<wgpu::RenderPipeline>,
+}
+
+/// The colour targets of a pipeline: the output format, or the two linear targets of a
+/// frame with the subsurface pass.
+fn targets(format: wgpu::TextureFormat, split: bool) -> Vec<Option<wgpu::ColorTargetState>> {
+    let target = |format| {
+        Some(wgpu::ColorTargetState {
+            format,
+            blend: None,
+            write_mask: wgpu::ColorWrites::ALL,
+        })
+    };
+    if split {
+        vec![target(SPLIT_FORMAT), target(SPLIT_FORMAT)]
+    } else {
+        vec![target(format)]
+    }
 }
 
 impl Pipelines {
@@ -94,7 +120,7 @@ impl Pipelines {
             bind_group_layouts: &[Some(&layouts.frame), Some(&layouts.prop_material)],
             immediate_size: 0,
         });
-        let character = |label: &str, source: String| {
+        let character = |label: &str, source: String, split: bool| {
             let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
                 label: Some(label),
                 source: wgpu::ShaderSource::Wgsl(source.into()),
@@ -103,7 +129,7 @@ impl Pipelines {
                 device,
                 &character_layout,
                 &module,
-                format,
+                &targets(format, split),
                 &[vertex_layout()],
                 label,
             )
@@ -111,7 +137,10 @@ impl Pipelines {
         let models = set
             .models
             .iter()
-            .map(|&m| (m, character(m.name(), build_shader_source(m))))
+            .map(|&m| {
+                let split = m.effects().screen_space;
+                (m, character(m.name(), build_shader_source(m), split))
+            })
             .collect();
         let unlit = set.unlit.then(|| {
             let src = compose(
@@ -119,24 +148,30 @@ impl Pipelines {
                 &ShaderDefs::new().alias("shading_model", "unlit"),
             )
             .expect("built-in shaders compose");
-            character("unlit", src)
+            character("unlit", src, false)
         });
-        let prop_src = compose("prop", &ShaderDefs::new()).expect("built-in shaders compose");
-        let prop_module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("prop"),
-            source: wgpu::ShaderSource::Wgsl(prop_src.into()),
-        });
-        let prop = pipeline(
-            device,
-            &prop_layout,
-            &prop_module,
-            format,
-            &[vertex_layout(), instance_layout()],
-            "prop",
-        );
+        let prop = |defs: &ShaderDefs, split: bool| {
+            let src = compose("prop", defs).expect("built-in shaders compose");
+            let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some("prop"),
+                source: wgpu::ShaderSource::Wgsl(src.into()),
+            });
+            pipeline(
+                device,
+                &prop_layout,
+                &module,
+                &targets(format, split),
+                &[vertex_layout(), instance_layout()],
+                "prop",
+            )
+        };
+        let prop_split = set
+            .needs_subsurface_pass()
+            .then(|| prop(&ShaderDefs::new().flag("SCREEN_SPACE"), true));
         Self {
             character: CharacterPipelines { models, unlit },
-            prop,
+            prop: prop(&ShaderDefs::new(), false),
+            prop_split,
         }
     }
 }
@@ -145,7 +180,7 @@ fn pipeline(
     device: &wgpu::Device,
     layout: &wgpu::PipelineLayout,
     module: &wgpu::ShaderModule,
-    format: wgpu::TextureFormat,
+    targets: &[Option<wgpu::ColorTargetState>],
     buffers: &[wgpu::VertexBufferLayout<'_>],
     label: &str,
 ) -> wgpu::RenderPipeline {
@@ -181,11 +216,7 @@ fn pipeline(
             module,
             entry_point: Some("fs_main"),
             compilation_options: Default::default(),
-            targets: &[Some(wgpu::ColorTargetState {
-                format,
-                blend: None,
-                write_mask: wgpu::ColorWrites::ALL,
-            })],
+            targets,
         }),
         multiview_mask: None,
         cache: None,

@@ -7,6 +7,7 @@ use super::frame::{FrameUniform, Light};
 use super::layouts::Layouts;
 use super::pipelines::{PipelineSet, Pipelines};
 use super::props::{PropGpu, PropInstance, PropKind, MAX_INSTANCES};
+use super::sss_pass::{SplitTargets, SssPass};
 use super::targets::Targets;
 use super::timer::PassTimer;
 use super::ui::UiRenderer;
@@ -43,6 +44,8 @@ pub struct DrawSet {
 pub struct Renderer {
     layouts: Layouts,
     pipelines: Pipelines,
+    /// The screen-space subsurface pass, when the pipeline set reaches a model that needs it.
+    sss: Option<SssPass>,
     sampler: wgpu::Sampler,
     frame_buffer: wgpu::Buffer,
     frame_group: wgpu::BindGroup,
@@ -65,6 +68,9 @@ impl Renderer {
         let device = &gpu.device;
         let layouts = Layouts::new(device);
         let pipelines = Pipelines::new(device, &layouts, format, set);
+        let sss = set
+            .needs_subsurface_pass()
+            .then(|| SssPass::new(device, &layouts, format, &set.models));
         let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("trilinear"),
             address_mode_u: wgpu::AddressMode::Repeat,
@@ -91,6 +97,7 @@ impl Renderer {
         Self {
             layouts,
             pipelines,
+            sss,
             sampler,
             frame_buffer,
             frame_group,
@@ -114,10 +121,17 @@ impl Renderer {
         model: &Model,
         material: &Material,
     ) -> Result<(), String> {
-        let character =
-            CharacterGpu::new(&gpu.device, &gpu.queue, &self.layouts, &self.sampler, model)?;
-        character.set_material(&gpu.queue, material);
+        let models = self.pipelines.character.built().models;
+        let character = CharacterGpu::new(
+            &gpu.device,
+            &gpu.queue,
+            &self.layouts,
+            &self.sampler,
+            model,
+            &models,
+        )?;
         self.character = Some(character);
+        self.set_material(&gpu.queue, material);
         Ok(())
     }
 
@@ -134,10 +148,19 @@ impl Renderer {
         ));
     }
 
+    /// Recomputes the character's shading constants (and subsurface kernels) for `material`.
     pub fn set_material(&self, queue: &wgpu::Queue, material: &Material) {
         if let Some(c) = &self.character {
             c.set_material(queue, material);
         }
+        if let Some(sss) = &self.sss {
+            sss.set_material(queue, material, self.clear);
+        }
+    }
+
+    /// Whether this renderer has the screen-space subsurface pass.
+    pub fn has_subsurface_pass(&self) -> bool {
+        self.sss.is_some()
     }
 
     /// Replaces the placed props.
@@ -198,7 +221,8 @@ impl Renderer {
         self.character.as_ref().map_or(0, |c| c.triangles)
     }
 
-    /// Records the frame's one render pass into `encoder`, resolving into `output`.
+    /// Records the frame into `encoder`, resolving into `output`: one render pass, or for a
+    /// character drawn with a screen-space model the scene pass and the subsurface pass.
     pub fn encode(
         &self,
         encoder: &mut wgpu::CommandEncoder,
@@ -208,6 +232,21 @@ impl Renderer {
         ui: Option<&UiRenderer>,
         timer: Option<&PassTimer>,
     ) -> RenderStats {
+        let split_model = draw
+            .shading
+            .filter(|m| draw.character && m.effects().screen_space);
+        if let Some(sss) = &self.sss {
+            // The split targets exist from the first frame of each size, whichever model it
+            // draws: switching to a screen-space model later creates nothing.
+            let frame = sss.with_targets(targets.width, targets.height, |split| {
+                split_model.map(|model| {
+                    self.encode_split(encoder, targets, output, draw, ui, timer, model, split)
+                })
+            });
+            if let Some(stats) = frame {
+                return stats;
+            }
+        }
         let mut stats = RenderStats::default();
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: None,
@@ -220,40 +259,133 @@ impl Renderer {
                     store: wgpu::StoreOp::Discard,
                 },
             })],
-            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                view: &targets.depth,
-                depth_ops: Some(wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(1.0),
-                    store: wgpu::StoreOp::Discard,
-                }),
-                stencil_ops: None,
-            }),
+            depth_stencil_attachment: Some(depth_attachment(targets)),
             timestamp_writes: timer.map(|t| t.writes()),
             occlusion_query_set: None,
             multiview_mask: None,
         });
         pass.set_bind_group(0, &self.frame_group, &[]);
-        if draw.character {
-            // A model outside the built set is not drawn (and never compiled at run time).
-            let pipeline = self.pipelines.character.get(draw.shading);
-            if let (Some(c), Some(pipeline)) = (&self.character, pipeline) {
-                pass.set_pipeline(pipeline);
-                pass.set_bind_group(1, c.params_group(draw.shading), &[]);
-                stats.draw_calls += c.draw(&mut pass);
-                stats.triangles += c.triangles;
-            }
-        }
-        if draw.props {
-            pass.set_pipeline(&self.pipelines.prop);
-            for prop in &self.props {
-                stats.draw_calls += prop.draw(&mut pass);
-                stats.triangles += prop.triangles * prop.count;
-            }
-        }
+        self.draw_scene(&mut pass, draw, &self.pipelines.prop, &mut stats);
         // The UI goes last, inside the same pass: one draw call.
         if let Some(ui) = ui {
             stats.draw_calls += ui.draw(&mut pass);
         }
         stats
+    }
+
+    /// The character and props of `draw` into the open pass.
+    fn draw_scene<'p>(
+        &'p self,
+        pass: &mut wgpu::RenderPass<'p>,
+        draw: DrawSet,
+        prop_pipeline: &'p wgpu::RenderPipeline,
+        stats: &mut RenderStats,
+    ) {
+        if draw.character {
+            // A model outside the built set is not drawn (and never compiled at run time).
+            let pipeline = self.pipelines.character.get(draw.shading);
+            if let Some(c) = &self.character {
+                if let (Some(pipeline), Some(group)) = (pipeline, c.params_group(draw.shading)) {
+                    pass.set_pipeline(pipeline);
+                    pass.set_bind_group(1, group, &[]);
+                    stats.draw_calls += c.draw(pass);
+                    stats.triangles += c.triangles;
+                }
+            }
+        }
+        if draw.props {
+            pass.set_pipeline(prop_pipeline);
+            for prop in &self.props {
+                stats.draw_calls += prop.draw(pass);
+                stats.triangles += prop.triangles * prop.count;
+            }
+        }
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn encode_split(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        targets: &Targets,
+        output: &wgpu::TextureView,
+        draw: DrawSet,
+        ui: Option<&UiRenderer>,
+        timer: Option<&PassTimer>,
+        model: ShadingModel,
+        split: &SplitTargets,
+    ) -> RenderStats {
+        let mut stats = RenderStats::default();
+        let (Some(sss), Some(prop_split), Some(group)) =
+            (&self.sss, &self.pipelines.prop_split, split.group(model))
+        else {
+            return stats;
+        };
+        // Background: alpha −1 tells the subsurface pass that nothing was drawn there.
+        let clear = wgpu::Color {
+            a: -1.0,
+            ..self.clear
+        };
+        let attachment = |view, resolve| {
+            Some(wgpu::RenderPassColorAttachment {
+                view,
+                depth_slice: None,
+                resolve_target: Some(resolve),
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(clear),
+                    store: wgpu::StoreOp::Discard,
+                },
+            })
+        };
+        {
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("scene (subsurface)"),
+                color_attachments: &[
+                    attachment(&split.colour_msaa, &split.colour),
+                    attachment(&split.spread_msaa, &split.spread),
+                ],
+                depth_stencil_attachment: Some(depth_attachment(targets)),
+                timestamp_writes: timer.map(|t| t.begin_writes()),
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            pass.set_bind_group(0, &self.frame_group, &[]);
+            self.draw_scene(&mut pass, draw, prop_split, &mut stats);
+        }
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("subsurface"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: &targets.msaa,
+                depth_slice: None,
+                resolve_target: Some(output),
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(self.clear),
+                    store: wgpu::StoreOp::Discard,
+                },
+            })],
+            depth_stencil_attachment: Some(depth_attachment(targets)),
+            timestamp_writes: timer.map(|t| t.end_writes()),
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_bind_group(0, &self.frame_group, &[]);
+        pass.set_pipeline(&sss.pipeline);
+        pass.set_bind_group(1, group, &[]);
+        pass.draw(0..3, 0..1);
+        stats.draw_calls += 1;
+        if let Some(ui) = ui {
+            stats.draw_calls += ui.draw(&mut pass);
+        }
+        stats
+    }
+}
+
+fn depth_attachment(targets: &Targets) -> wgpu::RenderPassDepthStencilAttachment<'_> {
+    wgpu::RenderPassDepthStencilAttachment {
+        view: &targets.depth,
+        depth_ops: Some(wgpu::Operations {
+            load: wgpu::LoadOp::Clear(1.0),
+            store: wgpu::StoreOp::Discard,
+        }),
+        stencil_ops: None,
     }
 }

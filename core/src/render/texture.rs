@@ -189,3 +189,101 @@ mod tests {
         assert!((lin[0] as i32 - 128).abs() <= 1);
     }
 }
+
+/// IEEE binary16 bits of `x` (round to nearest even; overflow to ∞, underflow through the
+/// subnormals to 0).
+pub fn f32_to_f16(x: f32) -> u16 {
+    let bits = x.to_bits();
+    let sign = ((bits >> 16) & 0x8000) as u16;
+    let exp = ((bits >> 23) & 0xff) as i32;
+    let man = bits & 0x7f_ffff;
+    if exp == 0xff {
+        return sign | 0x7c00 | if man != 0 { 0x200 } else { 0 };
+    }
+    let e = exp - 127 + 15;
+    if e >= 0x1f {
+        return sign | 0x7c00;
+    }
+    if e <= 0 {
+        if e < -10 {
+            return sign;
+        }
+        let m = man | 0x80_0000;
+        let shift = (14 - e) as u32;
+        let half = 1u32 << (shift - 1);
+        let rest = m & ((1 << shift) - 1);
+        let mut v = m >> shift;
+        if rest > half || (rest == half && v & 1 == 1) {
+            v += 1;
+        }
+        return sign | v as u16;
+    }
+    let mut v = ((e as u32) << 10) | (man >> 13);
+    let rest = man & 0x1fff;
+    if rest > 0x1000 || (rest == 0x1000 && v & 1 == 1) {
+        v += 1; // may carry into the exponent: still correct
+    }
+    sign | v as u16
+}
+
+/// An `Rgba16Float` texture of `width × height` texels (a LUT), written by [`write_rgba16f`].
+pub fn rgba16f(device: &wgpu::Device, (width, height): (u32, u32), label: &str) -> wgpu::Texture {
+    device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
+        size: wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: wgpu::TextureFormat::Rgba16Float,
+        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        view_formats: &[],
+    })
+}
+
+/// Writes `texels` (row-major) into an `Rgba16Float` texture made by [`rgba16f`].
+pub fn write_rgba16f(queue: &wgpu::Queue, texture: &wgpu::Texture, texels: &[[f32; 4]]) {
+    let bytes: Vec<u8> = texels
+        .iter()
+        .flat_map(|t| t.iter().flat_map(|&v| f32_to_f16(v).to_le_bytes()))
+        .collect();
+    let (w, h) = (texture.width(), texture.height());
+    queue.write_texture(
+        wgpu::TexelCopyTextureInfo {
+            texture,
+            mip_level: 0,
+            origin: wgpu::Origin3d::ZERO,
+            aspect: wgpu::TextureAspect::All,
+        },
+        &bytes,
+        wgpu::TexelCopyBufferLayout {
+            offset: 0,
+            bytes_per_row: Some(w * 8),
+            rows_per_image: Some(h),
+        },
+        wgpu::Extent3d {
+            width: w,
+            height: h,
+            depth_or_array_layers: 1,
+        },
+    );
+}
+
+#[cfg(test)]
+mod f16_tests {
+    use super::f32_to_f16;
+    use crate::render::offscreen::f16_to_f32;
+
+    #[test]
+    fn f16_round_trips_and_rounds_to_nearest() {
+        for x in [0.0f32, 1.0, -2.5, 0.333, 65504.0, 6.1e-5, 1e-7, 3.0e-6] {
+            let y = f16_to_f32(f32_to_f16(x));
+            assert!((y - x).abs() <= x.abs() * 1e-3 + 6e-8, "{x} → {y}");
+        }
+        assert_eq!(f32_to_f16(1e6), 0x7c00);
+        assert_eq!(f32_to_f16(1.0 + 1.0 / 4096.0), f32_to_f16(1.0));
+    }
+}

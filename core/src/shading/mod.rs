@@ -5,6 +5,7 @@
 //! [`ShadingModel`] is the one registry of model names, used by the CLI, the UI, the renderer
 //! and every JSON output.
 
+pub mod bake;
 pub mod burley;
 pub mod conformance;
 pub mod dipole;
@@ -12,10 +13,13 @@ pub mod fresnel;
 pub mod material;
 pub mod oss;
 pub mod prediction;
+pub mod preintegrated;
 mod registry;
+pub mod subsurface;
+pub mod tabulated;
 pub mod transport;
 pub mod units;
 pub mod ward;
 
 pub use material::Material;
-pub use registry::{Effects, ModelParams, ShadingModel};
+pub use registry::{Effects, ModelParams, ShadingModel, MODEL_PARAM_ROWS};

@@ -3,8 +3,9 @@
 //! f_d = (1 − F_dr,t) (σ'_s P(g) {d − σ_a d² + σ_a² d³/3} + F_dr,b (1 − σ_a d − σ'_s P(g) d²))
 //! is a cubic in the depth d [mm] whose coefficients depend only on the material, so they are
 //! precomputed here and the shader evaluates f_d = c0 + c1 d + c2 d² + c3 d³ (Horner).
-//! Colour (eq. 6): f_d (ρ_d cosθ + 20 ρ_ts / d_L^2.5) + ρ_d L cosθ · Ward lobe (ρ_s), d_L the
-//! light distance [m]. Skin: ρ_d = 1, ρ_s = 0.2, ρ_ts = 0.01. F_dr,t = F_dr,b = F_dr(η)
+//! Colour (eq. 6): f_d (ρ_d cosθ E + 20 ρ_ts I / d_L^2.5) + ρ_d L cosθ · Ward lobe (ρ_s), d_L the
+//! light distance [m], E = I/d_L² the irradiance: the translucency term is read as its own
+//! d_L^-2.5 fall-off of the light's intensity I (eq. 6 multiplies it by neither E nor 1/d²). Skin: ρ_d = 1, ρ_s = 0.2, ρ_ts = 0.01. F_dr,t = F_dr,b = F_dr(η)
 //! (a layer in air on both sides). The printed eq. 6 writes θ_n in the lobe; the angle between
 //! the normal and itself is 0, so the lobe's θ is read as θ_h (Walter's form).
 //! As printed, f_d turns negative for thick layers (skin1: beyond ~1.4 mm in blue); the
@@ -79,9 +80,9 @@ pub fn shade(p: &ModelParams, stable: bool, px: &Pixel) -> DVec3 {
     let tex = if misc[3] > 0.5 { px.albedo } else { DVec3::ONE };
     let nl = px.n.dot(px.l).max(0.0);
     let dl = px.light_dist().max(misc[2]);
-    let translucency = 20.0 * misc[1] / dl.powf(2.5);
+    let translucency = 20.0 * misc[1] / dl.powf(2.5) * px.light;
     let e0 = px.irradiance();
-    let diffuse = fd * tex * (misc[0] * nl + translucency) * e0 / std::f64::consts::PI;
+    let diffuse = fd * tex * (misc[0] * nl * e0 + translucency) / std::f64::consts::PI;
     let lobe = ward::Lobe {
         rho_s: k[5][0],
         alpha_x: k[5][1],
@@ -99,7 +100,8 @@ pub struct Params {
     pub coeffs: [[f64; 3]; 4],
     /// σ_a per channel (stable form).
     pub sigma_a: [f64; 3],
-    /// σ'_s P(g) per channel (stable form).
+    /// σ'_s P(0) = σ'_s/2 per channel (stable form; the printed form's σ'_s P(g) applies g
+    /// twice).
     pub sp: [f64; 3],
     /// F_dr(η) (top and bottom).
     pub fdr: f64,
@@ -111,14 +113,18 @@ impl Params {
         let f = fresnel::diffuse_reflectance(m.eta);
         let (ft, fb) = (f, f);
         let p = backward_fraction(m.g);
-        let sp: [f64; 3] = std::array::from_fn(|c| m.sigma_s_prime[c] * p);
+        // As printed, eq. 5 multiplies σ'_s by P(g); σ'_s = σ_s (1 − g) is already the reduced
+        // (similarity-scaled, isotropic-equivalent) coefficient, so the stable form takes the
+        // isotropic backward fraction P(0) = 1/2 instead of applying g a second time.
+        let sp_printed: [f64; 3] = std::array::from_fn(|c| m.sigma_s_prime[c] * p);
+        let sp: [f64; 3] = std::array::from_fn(|c| m.sigma_s_prime[c] * backward_fraction(0.0));
         let a = m.sigma_a;
         let k = 1.0 - ft;
         let coeffs = [
             [k * fb; 3],
-            std::array::from_fn(|c| k * (sp[c] - fb * a[c])),
-            std::array::from_fn(|c| k * (-sp[c] * a[c] - fb * sp[c])),
-            std::array::from_fn(|c| k * sp[c] * a[c] * a[c] / 3.0),
+            std::array::from_fn(|c| k * (sp_printed[c] - fb * a[c])),
+            std::array::from_fn(|c| k * (-sp_printed[c] * a[c] - fb * sp_printed[c])),
+            std::array::from_fn(|c| k * sp_printed[c] * a[c] * a[c] / 3.0),
         ];
         Self {
             coeffs,

@@ -7,7 +7,7 @@
 //! semi-infinite one; OSS is a layer model, f_d(d). For the semi-infinite medium OSS is
 //! evaluated at [`OSS_SEMI_INFINITE_MM`] (its printed form has no finite limit).
 
-use super::{burley, dipole, oss, Material, ShadingModel};
+use super::{bake, burley, dipole, fresnel, oss, Material, ShadingModel};
 
 /// Depth at which OSS stands in for a semi-infinite medium (mm).
 pub const OSS_SEMI_INFINITE_MM: f64 = 100.0;
@@ -40,6 +40,13 @@ pub fn total_reflectance(
             })
         }
         ShadingModel::Burley => burley::surface_albedo(material),
+        // The measured kernel's total, per entered power; a slab's reflectance is not in the
+        // tables (their translucency is the light through it).
+        ShadingModel::Tabulated | ShadingModel::Preintegrated => {
+            let t = bake::for_material(material).reflectance();
+            let entry = fresnel::transmittance_shader(material.eta, 1.0);
+            t.map(|r| r / entry)
+        }
     }
 }
 

@@ -1,6 +1,10 @@
 //! The one registry of shading-model names.
 
-use super::{burley, dipole, oss, ward, Material};
+use std::sync::Arc;
+
+use super::preintegrated::{self, Lut};
+use super::subsurface::Kernel;
+use super::{bake, burley, dipole, oss, tabulated, ward, Material};
 use crate::shader::ShaderDefs;
 
 /// A selectable character shading model (and the paper's printed variants).
@@ -18,8 +22,14 @@ pub enum ShadingModel {
     Oss,
     /// OSS with eq. 5's terms replaced by positive, bounded, dimensionally consistent forms.
     OssStable,
-    /// Christensen–Burley normalised diffusion with a transport-solved albedo (fourth model).
+    /// Christensen–Burley normalised diffusion (transport-solved albedo, diffuse mean free
+    /// path), spread in screen space.
     Burley,
+    /// The Monte Carlo-measured diffusion profile with oblique incidence and translucency,
+    /// spread in screen space.
+    Tabulated,
+    /// Pre-integrated skin: a LUT over (n·l, curvature) from the measured profile, one pass.
+    Preintegrated,
 }
 
 /// The effects a material shaded by a model calls for — what its shader computes. The
@@ -35,20 +45,28 @@ pub struct Effects {
     pub specular: bool,
     /// The base-colour texture tints the result.
     pub texture: bool,
+    /// The screen-space subsurface pass spreads the model's irradiance (its frames render
+    /// linear radiance into two targets and end with `sss_pass.wgsl`).
+    pub screen_space: bool,
+    /// The model samples a pre-integrated LUT (bound next to its uniform).
+    pub lut: bool,
 }
 
-/// The uniform block a model's shader reads at `@group(1) @binding(0)`: 16 vec4s, laid out
+/// The uniform block a model's shader reads at `@group(1) @binding(0)`: 32 vec4s, laid out
 /// by each model's own `Params` struct (see `ward.rs`, `dipole.rs`, `oss.rs`).
 #[repr(C, align(16))]
 #[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
-pub struct ModelParams(pub [[f32; 4]; 16]);
+pub struct ModelParams(pub [[f32; 4]; MODEL_PARAM_ROWS]);
+
+/// Rows (vec4) of [`ModelParams`].
+pub const MODEL_PARAM_ROWS: usize = 32;
 
 impl ModelParams {
     pub const SIZE: u64 = std::mem::size_of::<Self>() as u64;
 
     /// Packs a model's vec4 rows, zero-filling the rest.
     pub fn from_rows(rows: &[[f32; 4]]) -> Self {
-        let mut p = [[0.0; 4]; 16];
+        let mut p = [[0.0; 4]; MODEL_PARAM_ROWS];
         p[..rows.len()].copy_from_slice(rows);
         Self(p)
     }
@@ -56,7 +74,7 @@ impl ModelParams {
 
 impl ShadingModel {
     /// Every model, in menu order.
-    pub const ALL: [ShadingModel; 7] = [
+    pub const ALL: [ShadingModel; 9] = [
         ShadingModel::Ward,
         ShadingModel::WardPrinted,
         ShadingModel::Dipole,
@@ -64,6 +82,8 @@ impl ShadingModel {
         ShadingModel::Oss,
         ShadingModel::OssStable,
         ShadingModel::Burley,
+        ShadingModel::Tabulated,
+        ShadingModel::Preintegrated,
     ];
 
     /// The paper's three, as the game's menu offers them by default.
@@ -80,6 +100,8 @@ impl ShadingModel {
             Self::Oss => "oss",
             Self::OssStable => "oss-stable",
             Self::Burley => "burley",
+            Self::Tabulated => "tabulated",
+            Self::Preintegrated => "preintegrated",
         }
     }
 
@@ -93,6 +115,8 @@ impl ShadingModel {
             Self::Oss => "OSS",
             Self::OssStable => "OSS (stable)",
             Self::Burley => "Burley diffusion",
+            Self::Tabulated => "Measured profile",
+            Self::Preintegrated => "Pre-integrated",
         }
     }
 
@@ -107,16 +131,48 @@ impl ShadingModel {
 
     /// The effects this model's shader computes.
     pub fn effects(self) -> Effects {
-        let (subsurface, translucency, specular, texture) = match self {
-            Self::Ward | Self::WardPrinted => (false, false, true, true),
-            Self::Dipole | Self::DipolePrinted | Self::Burley => (true, false, false, false),
-            Self::Oss | Self::OssStable => (true, true, true, true),
+        let no = Effects {
+            subsurface: false,
+            translucency: false,
+            specular: false,
+            texture: false,
+            screen_space: false,
+            lut: false,
         };
-        Effects {
-            subsurface,
-            translucency,
-            specular,
-            texture,
+        match self {
+            Self::Ward | Self::WardPrinted => Effects {
+                specular: true,
+                texture: true,
+                ..no
+            },
+            Self::Dipole | Self::DipolePrinted => Effects {
+                subsurface: true,
+                ..no
+            },
+            Self::Oss | Self::OssStable => Effects {
+                subsurface: true,
+                translucency: true,
+                specular: true,
+                texture: true,
+                ..no
+            },
+            Self::Burley => Effects {
+                subsurface: true,
+                screen_space: true,
+                ..no
+            },
+            Self::Tabulated => Effects {
+                subsurface: true,
+                translucency: true,
+                screen_space: true,
+                ..no
+            },
+            Self::Preintegrated => Effects {
+                subsurface: true,
+                translucency: true,
+                lut: true,
+                ..no
+            },
         }
     }
 
@@ -127,6 +183,8 @@ impl ShadingModel {
             Self::Dipole | Self::DipolePrinted => "dipole",
             Self::Oss | Self::OssStable => "oss",
             Self::Burley => "burley",
+            Self::Tabulated => "tabulated",
+            Self::Preintegrated => "preintegrated",
         }
     }
 
@@ -137,7 +195,19 @@ impl ShadingModel {
             Self::WardPrinted => defs.flag("WARD_PRINTED"),
             Self::DipolePrinted => defs.flag("DIPOLE_PRINTED"),
             Self::OssStable => defs.flag("OSS_STABLE"),
-            _ => defs,
+            _ => {
+                let e = self.effects();
+                let defs = if e.screen_space {
+                    defs.flag("SCREEN_SPACE")
+                } else {
+                    defs
+                };
+                if e.subsurface && e.translucency {
+                    defs.flag("TRANSLUCENCY")
+                } else {
+                    defs
+                }
+            }
         }
     }
 
@@ -153,8 +223,40 @@ impl ShadingModel {
             Self::Ward | Self::WardPrinted => ward::Params::new(material, &ward::Lobe::SKIN).pack(),
             Self::Dipole | Self::DipolePrinted => dipole::Params::new(material).pack(),
             Self::Oss | Self::OssStable => oss::Params::new(material).pack(),
-            Self::Burley => burley::Params::new(material).pack(),
+            Self::Burley => burley::params(material).pack(),
+            Self::Tabulated => tabulated::params(material).pack(),
+            Self::Preintegrated => preintegrated::params(material).pack(),
         }
+    }
+
+    /// [`Self::params`] with the measured tables of `material` baked within `budget` (tests
+    /// that run the per-pixel code over many materials use a quick one).
+    pub fn params_with(self, material: &Material, budget: bake::Budget) -> ModelParams {
+        let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+        match self {
+            Self::Tabulated => {
+                tabulated::params_from(&bake::measure(material, budget, threads), material).pack()
+            }
+            Self::Preintegrated => {
+                preintegrated::params_from(&bake::measure(material, budget, threads), material)
+                    .pack()
+            }
+            _ => self.params(material),
+        }
+    }
+
+    /// The kernel the screen-space pass spreads this model's irradiance with.
+    pub fn kernel(self, material: &Material) -> Option<Kernel> {
+        match self {
+            Self::Burley => Some(burley::kernel(material)),
+            Self::Tabulated => Some(tabulated::kernel(material)),
+            _ => None,
+        }
+    }
+
+    /// The pre-integrated LUT this model samples.
+    pub fn lut(self, material: &Material) -> Option<Arc<Lut>> {
+        (self == Self::Preintegrated).then(|| preintegrated::lut(material))
     }
 }
 

@@ -1,0 +1,287 @@
+//! Shared by the spatial subsurface models `tabulated`, `burley` and `preintegrated`
+//! (WGSL: `shaders/subsurface.wgsl`): their one uniform layout, the diffusion kernel the
+//! screen-space pass spreads irradiance with, and the f64 twins of the per-pixel split.
+//!
+//! A spatial model's pixel receives the surface irradiance E = I cosθ/d² weighted by q(μ), the
+//! diffuse reflectance at incidence μ relative to normal incidence; the screen-space pass
+//! spreads it with the normal-incidence kernel (exitance per unit incident power, rings of
+//! exact mass); the exitance M leaves with radiance M · F_t(η, n·v)/(π C(η)), C(η) =
+//! ∫₀¹ F_t(η, μ) 2μ dμ, which integrates back to M over the hemisphere.
+
+use glam::DVec3;
+
+use super::bake::{OBLIQUE_NODES, SLAB_FIRST_MM, SLAB_NODES};
+use super::conformance::{rows, Pixel};
+use super::{fresnel, registry::ModelParams, units};
+
+/// Rings the screen-space pass can take (`MAX_RINGS` in `sss_pass.wgsl`).
+pub const MAX_RINGS: usize = 24;
+/// Rows (vec4) of the packed kernel uniform.
+pub const KERNEL_ROWS: usize = 3 + MAX_RINGS;
+/// Sample directions per ring (the pass's default quality).
+pub const ANGLES: u32 = 8;
+/// Relative pixel-size difference beyond which a neighbour is another surface.
+pub const DEPTH_TOLERANCE: f32 = 0.1;
+/// The pre-integration LUT's curvature scale R0 (mm): the LUT's v axis is R0/(R0 + ρ).
+pub const LUT_R0_MM: f64 = 10.0;
+
+/// C(η) = ∫₀¹ F_t(η, μ) 2μ dμ: the fraction of a Lambertian outside radiance that enters,
+/// i.e. (by reciprocity) the normalisation of the exit distribution F_t(θ_o)/(πC).
+pub fn exit_normalisation(eta: f64) -> f64 {
+    let n = 2000;
+    (0..n)
+        .map(|i| {
+            let mu = (i as f64 + 0.5) / n as f64;
+            fresnel::transmittance_shader(eta, mu) * 2.0 * mu / n as f64
+        })
+        .sum()
+}
+
+/// The radial kernel the screen-space pass applies: the exitance per unit incident power at
+/// normal incidence, as power fractions over the inner disk and over rings.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Kernel {
+    /// Mass of the inner disk (taken at the pixel itself), per channel.
+    pub centre: [f64; 3],
+    /// Radius of the inner disk (mm).
+    pub centre_radius: f64,
+    /// (mass per channel, outer radius mm) of each ring; ring k starts where ring k − 1 ends.
+    pub rings: Vec<([f64; 3], f64)>,
+}
+
+impl Kernel {
+    /// From ring edges (mm, edges[0] = 0) and the power leaving through each ring.
+    pub fn from_rings(edges: &[f64], mass: &[[f64; 3]]) -> Self {
+        let centre = mass.first().copied().unwrap_or([0.0; 3]);
+        let rings = edges
+            .windows(2)
+            .zip(mass)
+            .skip(1)
+            .map(|(w, m)| (*m, w[1]))
+            .take(MAX_RINGS)
+            .collect();
+        Self {
+            centre,
+            centre_radius: edges.get(1).copied().unwrap_or(0.0),
+            rings,
+        }
+    }
+
+    /// Total power fraction (the diffuse reflectance at normal incidence).
+    pub fn total(&self) -> [f64; 3] {
+        std::array::from_fn(|c| self.centre[c] + self.rings.iter().map(|r| r.0[c]).sum::<f64>())
+    }
+
+    /// The uniform `Kernel` of `sss_pass.wgsl`: counts, the background colour, the centre,
+    /// then (mass, radius) per ring.
+    pub fn pack(&self, angles: u32, background: [f32; 4]) -> Vec<[f32; 4]> {
+        let mut out = Vec::with_capacity(KERNEL_ROWS);
+        out.push([self.rings.len() as f32, angles as f32, DEPTH_TOLERANCE, 0.0]);
+        out.push(background);
+        let f = |m: [f64; 3], w: f64| [m[0] as f32, m[1] as f32, m[2] as f32, w as f32];
+        out.push(f(self.centre, self.centre_radius));
+        out.extend(self.rings.iter().map(|(m, r)| f(*m, *r)));
+        out.resize(KERNEL_ROWS, [0.0; 4]);
+        out
+    }
+}
+
+/// What `subsurface.wgsl` reads (`ModelParams`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Params {
+    /// Diffuse reflectance at normal incidence per unit incident power.
+    pub albedo: [f64; 3],
+    pub eta: f64,
+    /// q(μ_k) = R(μ_k)/R(1), μ_k = (k/6)².
+    pub oblique: [[f64; 3]; OBLIQUE_NODES],
+    /// Forward shift δ(μ_k) (mm) of obliquely entering light; zeros: none.
+    pub shift: [[f64; 3]; OBLIQUE_NODES],
+    /// Diffuse transmittance of slabs SLAB_FIRST_MM · 2^k thick; `None`: no translucency.
+    pub slab: Option<[[f64; 3]; SLAB_NODES]>,
+    /// Height (mm) the light is lifted by (pre-integrated model), per channel.
+    pub lift: [f64; 3],
+}
+
+impl Params {
+    pub fn pack(&self) -> ModelParams {
+        let row = |v: [f64; 3], w: f64| [v[0] as f32, v[1] as f32, v[2] as f32, w as f32];
+        let mut rows = vec![
+            row(self.albedo, self.eta),
+            [
+                (1.0 / (std::f64::consts::PI * exit_normalisation(self.eta))) as f32,
+                f32::from(u8::from(self.slab.is_some())),
+                units::MM_PER_M as f32,
+                LUT_R0_MM as f32,
+            ],
+            row(self.lift, 0.0),
+        ];
+        rows.extend(self.oblique.iter().map(|q| row(*q, 0.0)));
+        let slab = self.slab.unwrap_or([[0.0; 3]; SLAB_NODES]);
+        rows.extend(slab.iter().map(|t| row(*t, 0.0)));
+        rows.extend(self.shift.iter().map(|d| row(*d, 0.0)));
+        ModelParams::from_rows(&rows)
+    }
+}
+
+/// The packed rows as the shader reads them.
+struct Packed {
+    albedo: DVec3,
+    eta: f64,
+    exit_norm: f64,
+    translucent: bool,
+    mm_per_m: f64,
+    oblique: [DVec3; OBLIQUE_NODES],
+    slab: [DVec3; SLAB_NODES],
+    shift: [DVec3; OBLIQUE_NODES],
+}
+
+fn unpack(p: &ModelParams) -> Packed {
+    let k = rows(p);
+    let v = |r: [f64; 4]| DVec3::new(r[0], r[1], r[2]);
+    Packed {
+        albedo: v(k[0]),
+        eta: k[0][3],
+        exit_norm: k[1][0],
+        translucent: k[1][1] > 0.5,
+        mm_per_m: k[1][2],
+        oblique: std::array::from_fn(|i| v(k[3 + i])),
+        slab: std::array::from_fn(|i| v(k[3 + OBLIQUE_NODES + i])),
+        shift: std::array::from_fn(|i| v(k[3 + OBLIQUE_NODES + SLAB_NODES + i])),
+    }
+}
+
+/// Linear interpolation in √μ in a table over μ_k = (k/6)².
+fn table(t: &[DVec3; OBLIQUE_NODES], mu: f64) -> DVec3 {
+    let x = mu.clamp(0.0, 1.0).sqrt() * (OBLIQUE_NODES - 1) as f64;
+    let i = (x as usize).min(OBLIQUE_NODES - 2);
+    let f = x - i as f64;
+    t[i].lerp(t[i + 1], f)
+}
+
+/// f64 twin of `sss_oblique`.
+fn oblique(p: &Packed, mu: f64) -> DVec3 {
+    table(&p.oblique, mu)
+}
+
+/// f64 twin of `sss_oblique` on the packed uniform.
+pub fn oblique_packed(pm: &ModelParams, mu: f64) -> DVec3 {
+    oblique(&unpack(pm), mu)
+}
+
+/// f64 twin of `sss_spread`: the irradiance each channel spreads, taken where the light that
+/// leaves here entered, δ_c(μ) mm back toward the light along the surface, with the area
+/// ratio ((ρ − δ)/ρ)(1 − dδ/dρ) of that outward shift.
+fn spread(p: &Packed, px: &Pixel) -> DVec3 {
+    let n = px.n;
+    let nl = n.dot(px.l);
+    let along = px.l - n * nl;
+    let len = along.length();
+    let dir = if len > 1e-9 {
+        along / len.max(1e-12)
+    } else {
+        DVec3::ZERO
+    };
+    let dist = px.light_dist();
+    let rho = len * dist * p.mm_per_m;
+    let to_light = px.l * dist;
+    let delta = table(&p.shift, nl.max(0.0)).min(DVec3::splat(rho));
+    let q = nl.clamp(0.0, 1.0).sqrt();
+    let i = ((q * (OBLIQUE_NODES - 1) as f64) as usize).min(OBLIQUE_NODES - 2);
+    let slope = (p.shift[i + 1] - p.shift[i]) * (OBLIQUE_NODES - 1) as f64 / (2.0 * q.max(1e-3));
+    let ddelta = -slope * nl.max(0.0) * len / (dist * p.mm_per_m);
+    DVec3::from_array(std::array::from_fn(|c| {
+        let d = to_light - dir * (delta[c] / p.mm_per_m);
+        let r = d.length().max(1e-3);
+        // The entry point's normal turns toward the light by δ/ρ_c (at most 1 rad); the
+        // conformance harness's surface has curvature radius 0.
+        let tilt = (delta[c] / 1e-3).min(1.0);
+        let tilted = (n + dir * tilt).normalize();
+        let mu = (tilted.dot(d) / r).max(0.0);
+        let area = if rho > 1e-6 {
+            (rho - delta[c]) / rho
+        } else {
+            1.0
+        } * (1.0 - ddelta[c]).max(0.0);
+        px.light[c] / (r * r) * mu * table(&p.oblique, mu)[c] * area
+    }))
+}
+
+/// f64 twin of `sss_slab`.
+pub fn slab_packed(pm: &ModelParams, t_mm: f64) -> DVec3 {
+    let p = unpack(pm);
+    let x = (t_mm.max(SLAB_FIRST_MM) / SLAB_FIRST_MM).log2();
+    let last_node = (SLAB_NODES - 1) as f64;
+    if x >= last_node {
+        let last = p.slab[SLAB_NODES - 1].max(DVec3::splat(1e-30));
+        let prev = p.slab[SLAB_NODES - 2].max(last);
+        let width = SLAB_FIRST_MM * 2f64.powf(last_node - 1.0);
+        let k = DVec3::new(
+            (prev.x / last.x).ln(),
+            (prev.y / last.y).ln(),
+            (prev.z / last.z).ln(),
+        ) / width;
+        let t_last = SLAB_FIRST_MM * 2f64.powf(last_node);
+        return last
+            * DVec3::new(
+                (-k.x * (t_mm - t_last)).exp(),
+                (-k.y * (t_mm - t_last)).exp(),
+                (-k.z * (t_mm - t_last)).exp(),
+            );
+    }
+    let i = (x as usize).min(SLAB_NODES - 2);
+    let ln = |v: DVec3| {
+        let v = v.max(DVec3::splat(1e-30));
+        DVec3::new(v.x.ln(), v.y.ln(), v.z.ln())
+    };
+    let m = ln(p.slab[i]).lerp(ln(p.slab[i + 1]), x - i as f64);
+    DVec3::new(m.x.exp(), m.y.exp(), m.z.exp())
+}
+
+/// f64 twin of `sss_split`: (local radiance, irradiance to spread, exit factor).
+pub fn split(pm: &ModelParams, px: &Pixel) -> (DVec3, DVec3, f64) {
+    let p = unpack(pm);
+    let exit = fresnel::transmittance_shader(p.eta, px.n.dot(px.v).max(0.0)) * p.exit_norm;
+    let e = px.irradiance();
+    let spread = spread(&p, px);
+    let translucency = if p.translucent {
+        let back = (-px.n.dot(px.l)).max(0.0);
+        e * back * oblique(&p, back) * slab_packed(pm, px.thickness() * p.mm_per_m)
+    } else {
+        DVec3::ZERO
+    };
+    let local = exit * (std::f64::consts::PI * px.ambient * p.albedo + translucency);
+    (local, spread, exit)
+}
+
+/// f64 twin of `sss_local`: the pixel under uniform irradiance.
+pub fn local(pm: &ModelParams, px: &Pixel) -> DVec3 {
+    let p = unpack(pm);
+    let (local, spread, exit) = split(pm, px);
+    local + exit * p.albedo * spread
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn exit_normalisation_is_one_without_a_boundary_and_below_one_with() {
+        assert!((exit_normalisation(1.0) - 1.0).abs() < 1e-6);
+        let c = exit_normalisation(1.4);
+        // 1 − C is the external diffuse reflectance of η = 1.4 (≈ 0.09).
+        assert!(c > 0.88 && c < 0.94, "{c}");
+    }
+
+    #[test]
+    fn ring_kernel_keeps_the_total_and_samples_inside_each_ring() {
+        let edges = [0.0, 0.1, 0.5, 2.0];
+        let mass = [[0.1, 0.2, 0.3], [0.2, 0.1, 0.0], [0.05, 0.05, 0.05]];
+        let k = Kernel::from_rings(&edges, &mass);
+        let t = k.total();
+        assert!((t[0] - 0.35).abs() < 1e-12 && (t[2] - 0.35).abs() < 1e-12);
+        for (w, (_, r)) in edges.windows(2).skip(1).zip(&k.rings) {
+            assert_eq!(*r, w[1]);
+        }
+        assert_eq!(k.pack(8, [0.0; 4]).len(), KERNEL_ROWS);
+    }
+}

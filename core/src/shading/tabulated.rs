@@ -1,0 +1,33 @@
+//! Spatial model `tabulated` (WGSL: `shaders/tabulated.wgsl`): the material's diffusion
+//! profile as measured by the project's Monte Carlo for a normally incident pencil beam
+//! ([`bake`]), spread over the screen by the subsurface pass with rings of exact mass; the
+//! oblique-incidence factor q(μ) and the translucency of thin parts from measured tables.
+//!
+//! It is the accuracy reference among the real-time models: everything it assumes is the
+//! ring quadrature, the screen-space mapping and that an obliquely lit surface scatters with
+//! the normal-incidence kernel scaled by q(μ).
+
+use super::bake::{self, Bake};
+use super::subsurface::{Kernel, Params};
+use super::Material;
+
+pub fn params(m: &Material) -> Params {
+    params_from(&bake::for_material(m), m)
+}
+
+/// The uniform for `m` from the tables `b`.
+pub fn params_from(b: &Bake, m: &Material) -> Params {
+    Params {
+        albedo: b.reflectance(),
+        eta: m.eta,
+        oblique: b.oblique,
+        shift: b.shift,
+        slab: Some(b.slab),
+        lift: [0.0; 3],
+    }
+}
+
+pub fn kernel(m: &Material) -> Kernel {
+    let b = bake::for_material(m);
+    Kernel::from_rings(&b.edges, &b.mass)
+}

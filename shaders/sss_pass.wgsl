@@ -1,0 +1,110 @@
+// The screen-space subsurface pass (Burley-style disk sampling with exact ring masses): it
+// exists only while the character's model is a spatial one. Each skin pixel gathers the
+// irradiance its neighbours received, ring by ring: a ring [r_k, r_k+1) of the diffusion
+// profile carries the power fraction mass_k (the profile's exact integral over the ring, per
+// channel) and is sampled in `angles` directions at one radius drawn per pixel and ring with
+// density ∝ r inside the ring (the profile is piecewise constant per ring, so the estimate
+// is unbiased; a fixed radius aliases a narrow irradiance peak into rings), the directions
+// turned per pixel and by the golden angle from ring to ring. Radii are in mm on the surface, mapped to pixels with each pixel's
+// own size in mm (written by the character pass). A sample that is off screen, not skin, or
+// at another depth (its pixel size differs by more than `depth_tolerance`) counts as the
+// centre pixel: energy stays where the surface is. Output: radiance that stayed + exit ·
+// exitance, then exposure, tone mapping and encoding as every other pass.
+// Driver: core/src/render/sss_pass.rs.
+#import common
+
+const MAX_RINGS: u32 = 24u;
+
+struct Kernel {
+    // x: rings used, y: angles per ring, z: depth tolerance (relative pixel size), w: unused.
+    counts: vec4<f32>,
+    // The clear colour as displayed: where nothing was drawn (colour alpha < 0).
+    background: vec4<f32>,
+    // rgb: mass of the inner disk (taken at the pixel); w: its radius (mm).
+    centre: vec4<f32>,
+    // rgb: mass of ring k; w: its outer radius (mm). Ring k starts where ring k − 1 ends, ring 0
+    // at `centre.w`.
+    rings: array<vec4<f32>, MAX_RINGS>,
+};
+
+@group(1) @binding(0) var<uniform> kernel: Kernel;
+@group(1) @binding(1) var colour_tex: texture_2d<f32>;
+@group(1) @binding(2) var spread_tex: texture_2d<f32>;
+@group(1) @binding(3) var spread_sampler: sampler;
+
+struct VertexOut {
+    @builtin(position) clip: vec4<f32>,
+};
+
+// One triangle covering the screen.
+@vertex
+fn vs_main(@builtin(vertex_index) i: u32) -> VertexOut {
+    let uv = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
+    var out: VertexOut;
+    out.clip = vec4<f32>(uv * 2.0 - 1.0, 0.0, 1.0);
+    return out;
+}
+
+fn frame_background() -> vec4<f32> {
+    return kernel.background;
+}
+
+const GOLDEN_ANGLE: f32 = 2.39996322972865;
+
+// A per-pixel, per-ring number in [0, 1) (a 2D integer hash).
+fn hash(p: vec2<u32>, k: u32) -> f32 {
+    var h = p.x * 1664525u + p.y * 1013904223u + k * 2654435769u;
+    h = (h ^ (h >> 16u)) * 2246822519u;
+    h = (h ^ (h >> 13u)) * 3266489917u;
+    h = h ^ (h >> 16u);
+    return f32(h >> 8u) / 16777216.0;
+}
+
+@fragment
+fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
+    let size = vec2<f32>(textureDimensions(spread_tex));
+    let p = vec2<i32>(in.clip.xy);
+    let colour = textureLoad(colour_tex, p, 0);
+    let centre = textureLoad(spread_tex, p, 0);
+    if (colour.a < -0.99) {
+        return frame_background();
+    }
+    if (colour.a <= 0.0 || centre.a <= 0.0) {
+        return finish(colour.rgb);
+    }
+    let px_per_mm = 1.0 / centre.a;
+    let rings = min(u32(kernel.counts.x), MAX_RINGS);
+    let angles = max(u32(kernel.counts.y), 1u);
+    let step = 6.28318530717959 / f32(angles);
+    var m = kernel.centre.rgb * centre.rgb;
+    var inner = kernel.centre.w;
+    let pixel = vec2<u32>(p);
+    let turn = hash(pixel, 0u) * step;
+    for (var k = 0u; k < rings; k = k + 1u) {
+        let ring = kernel.rings[k];
+        let outer = ring.w;
+        let u = hash(pixel, k + 1u);
+        let r_mm = sqrt(inner * inner + u * (outer * outer - inner * inner));
+        inner = outer;
+        let r_px = r_mm * px_per_mm;
+        if (r_px < 0.5) {
+            m = m + ring.rgb * centre.rgb;
+            continue;
+        }
+        var sum = vec3<f32>(0.0);
+        for (var j = 0u; j < angles; j = j + 1u) {
+            let a = turn + f32(k) * GOLDEN_ANGLE + f32(j) * step;
+            let at = in.clip.xy + r_px * vec2<f32>(cos(a), sin(a));
+            var e = centre.rgb;
+            if (all(at >= vec2<f32>(0.0)) && all(at < size)) {
+                let s = textureSampleLevel(spread_tex, spread_sampler, at / size, 0.0);
+                if (s.a > 0.0 && abs(s.a - centre.a) <= kernel.counts.z * centre.a) {
+                    e = s.rgb;
+                }
+            }
+            sum = sum + e;
+        }
+        m = m + ring.rgb * sum / f32(angles);
+    }
+    return finish(colour.rgb + colour.a * m);
+}

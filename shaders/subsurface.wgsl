@@ -1,0 +1,147 @@
+// Shared by the spatial subsurface models (`tabulated`, `burley`, `preintegrated`): their one
+// uniform layout, the oblique-incidence and translucency tables, the exit distribution.
+// CPU twin: core/src/shading/subsurface.rs (`Params`, `split`, `translucency`).
+//
+// Units: the tables are per unit incident power; thickness in mm; lengths on the surface in mm.
+// Exitance M leaves the smooth boundary with the radiance M · F_t(η, n·v) / (π C(η)),
+// C(η) = ∫ F_t(η, μ) 2μ dμ, so the radiance integrates back to M over the hemisphere.
+#import common
+#import fresnel
+
+struct ModelParams {
+    // rgb: diffuse reflectance of the medium at normal incidence per incident power; w: η.
+    albedo: vec4<f32>,
+    // x: 1/(π C(η)); y: 1 for models with translucency (their composition sets
+    // TRANSLUCENCY); z: mm per metre of thickness;
+    // w: the pre-integration LUT's curvature scale R0 (mm).
+    misc: vec4<f32>,
+    // rgb: height (mm) the light is lifted by to blur a point light's irradiance (preintegrated).
+    lift: vec4<f32>,
+    // q(μ_k) = R(μ_k)/R(1), μ_k = (k/6)² (tables are linear in √μ): oblique incidence
+    // relative to normal, per channel.
+    oblique: array<vec4<f32>, 7>,
+    // Diffuse transmittance of a slab 0.25 · 2^k mm thick lit from behind, per channel.
+    slab: array<vec4<f32>, 7>,
+    // δ(μ_k) (mm): how far forward light entering at μ_k leaves, per channel.
+    shift: array<vec4<f32>, 7>,
+};
+
+@group(1) @binding(0) var<uniform> model: ModelParams;
+
+// What a spatial model's pixel contributes: radiance that stays put, irradiance that the
+// screen-space pass spreads with the diffusion kernel, and the exit factor that turns the
+// spread exitance into radiance toward the viewer.
+struct Split {
+    local: vec3<f32>,
+    spread: vec3<f32>,
+    exit: f32,
+};
+
+fn sss_oblique(mu: f32) -> vec3<f32> {
+    let x = sqrt(clamp(mu, 0.0, 1.0)) * 6.0;
+    let i = min(u32(x), 5u);
+    let f = x - f32(i);
+    return mix(model.oblique[i].rgb, model.oblique[i + 1u].rgb, f);
+}
+
+fn sss_shift(mu: f32) -> vec3<f32> {
+    let x = sqrt(clamp(mu, 0.0, 1.0)) * 6.0;
+    let i = min(u32(x), 5u);
+    let f = x - f32(i);
+    return mix(model.shift[i].rgb, model.shift[i + 1u].rgb, f);
+}
+
+// dδ/dμ of the shift table (linear in √μ: dδ/dμ = dδ/d√μ / (2√μ)).
+fn sss_shift_slope(mu: f32) -> vec3<f32> {
+    let q = sqrt(clamp(mu, 0.0, 1.0));
+    let i = min(u32(q * 6.0), 5u);
+    return (model.shift[i + 1u].rgb - model.shift[i].rgb) * 6.0 / (2.0 * max(q, 1e-3));
+}
+
+// The irradiance each channel spreads, weighted by q(μ): taken where the light that leaves
+// here entered, δ_c(μ) mm back toward the light along the surface (obliquely entering light
+// travels on before it leaves; the light is analytic, so its irradiance can be evaluated
+// there). The shift points away from the foot of the light, so the map x → x − δ is an
+// outward flow of radius ρ → ρ − δ(ρ) (ρ the distance to the foot along the surface); its
+// area ratio ((ρ − δ)/ρ)(1 − dδ/dρ), with dδ/dρ = δ'(μ) dμ/dρ and dμ/dρ = −μ sinθ / d for a
+// light at distance d, keeps the spread power equal to the received power.
+fn sss_spread(s: Surface) -> vec3<f32> {
+    let nl = dot(s.n, s.l);
+    let along = s.l - s.n * nl;
+    let len = length(along);
+    let dir = select(vec3<f32>(0.0), along / max(len, 1e-12), len > 1e-9);
+    let rho = len * s.light_dist * model.misc.z;
+    let to_light = s.l * s.light_dist;
+    let delta = min(sss_shift(max(nl, 0.0)), vec3<f32>(rho));
+    let ddelta = -sss_shift_slope(max(nl, 0.0)) * max(nl, 0.0) * len / (s.light_dist * model.misc.z);
+    let light = frame.light_pos.w * frame.light_color.rgb;
+    var out = vec3<f32>(0.0);
+    for (var c = 0u; c < 3u; c = c + 1u) {
+        let back = dir * (delta[c] / model.misc.z);
+        let d = to_light - back;
+        let r = max(length(d), 1e-3);
+        // On a curved surface the entry point's normal is turned toward the light by δ/ρ_c
+        // (at most 1 rad).
+        let tilt = min(delta[c] / max(s.curvature_radius * model.misc.z, 1e-3), 1.0);
+        let n = normalize(s.n + dir * tilt);
+        let mu = max(dot(n, d) / r, 0.0);
+        let area = select(1.0, (rho - delta[c]) / rho, rho > 1e-6) * max(1.0 - ddelta[c], 0.0);
+        let seen = light_visible(s.pos + back);
+        out[c] = light[c] * seen / (r * r) * mu * sss_oblique(mu)[c] * area;
+    }
+    return out;
+}
+
+fn sss_exit(s: Surface) -> f32 {
+    return fresnel_transmittance(model.albedo.w, max(dot(s.n, s.v), 0.0)) * model.misc.x;
+}
+
+#ifdef TRANSLUCENCY
+// Diffuse transmittance through `t_mm` of material, interpolated in log T between the slab
+// nodes (log-spaced in thickness);
+// past the thickest node it decays exponentially at the rate of the last interval.
+fn sss_slab(t_mm: f32) -> vec3<f32> {
+    let x = log2(max(t_mm, 0.25) / 0.25);
+    if (x >= 6.0) {
+        let last = max(model.slab[6].rgb, vec3<f32>(1e-30));
+        let prev = max(model.slab[5].rgb, last);
+        // Per-mm decay rate over the last interval (8 mm wide).
+        let k = log(prev / last) / 8.0;
+        return last * exp(-k * (t_mm - 16.0));
+    }
+    // Transmittance falls off exponentially: interpolate its logarithm.
+    let i = min(u32(x), 5u);
+    let f = x - f32(i);
+    let lo = log(max(model.slab[i].rgb, vec3<f32>(1e-30)));
+    let hi = log(max(model.slab[i + 1u].rgb, vec3<f32>(1e-30)));
+    return exp(mix(lo, hi, f));
+}
+
+#endif
+
+// Light through the material from behind (n·l < 0), spread locally (models whose
+// composition sets TRANSLUCENCY; the others have no such code).
+fn sss_translucency(s: Surface) -> vec3<f32> {
+#ifdef TRANSLUCENCY
+    let back = max(-dot(s.n, s.l), 0.0);
+    return irradiance(s) * back * sss_oblique(back) * sss_slab(s.thickness * model.misc.z);
+#else
+    return vec3<f32>(0.0);
+#endif
+}
+
+fn sss_split(s: Surface) -> Split {
+    var out: Split;
+    out.exit = sss_exit(s);
+    out.spread = sss_spread(s);
+    // Ambient: uniform radiance L_a gives irradiance π L_a, reflected with the medium's albedo.
+    out.local = out.exit * (PI * frame.ambient.rgb * model.albedo.rgb + sss_translucency(s));
+    return out;
+}
+
+// The pixel on its own: what the screen-space pass gives where the irradiance is uniform
+// (the kernel integrates to the albedo).
+fn sss_local(s: Surface) -> vec3<f32> {
+    let p = sss_split(s);
+    return p.local + p.exit * model.albedo.rgb * p.spread;
+}

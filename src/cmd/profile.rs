@@ -1,0 +1,284 @@
+//! `dermis profile`: the radial exitance profile M(r) of a flat medium under a point light,
+//! rendered through the real renderer (`dermis_core::probe`) for one or more shading models.
+//!
+//! The scene is the reference's `point_light` scene: a flat semi-infinite medium lit by an
+//! isotropic point light of unit power at height H; the output is M(r) averaged over annuli,
+//! in mm⁻² per unit source power (the Monte Carlo's units, `tools/reference/*.json`).
+
+use dermis_core::probe::Probe;
+use dermis_core::reference::Scene;
+use dermis_core::render::Gpu;
+use dermis_core::shading::{Material, ShadingModel};
+use serde_json::{json, Map, Value};
+
+use crate::cli::{parse_material, parse_model};
+
+/// Light heights accepted (mm).
+pub const H_RANGE_MM: (f64, f64) = (0.01, 1000.0);
+/// Largest outer annulus radius accepted (mm).
+pub const MAX_RADIUS_MM: f64 = 5000.0;
+/// Annuli of the default edges.
+const DEFAULT_BINS: usize = 24;
+
+#[derive(clap::Args, Debug)]
+pub struct ProfileArgs {
+    /// Shading model(s), comma-separated (default: every model).
+    #[arg(long, value_delimiter = ',', value_parser = parse_model, conflicts_with = "all")]
+    pub shading: Vec<ShadingModel>,
+    /// Every shading model (the default when --shading is not given).
+    #[arg(long)]
+    pub all: bool,
+    /// Material preset (skin1 | white-coat).
+    #[arg(long, default_value = "skin1", value_parser = parse_material)]
+    pub material: Material,
+    /// Relative index of refraction (default: the preset's).
+    #[arg(long)]
+    pub eta: Option<f64>,
+    /// Henyey–Greenstein anisotropy g.
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    pub g: f64,
+    /// Height of the point light above the surface (mm).
+    #[arg(long, allow_negative_numbers = true)]
+    pub light_height_mm: f64,
+    /// Annulus edges (mm), comma-separated, ascending, ≥ 0 (default: 24 annuli out to 4H + 20).
+    #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
+    pub edges_mm: Option<Vec<f64>>,
+    /// Print JSON: {"edges_mm": [...], "models": {"<name>": {"exitance": [[r, g, b], ...]}}}.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// The checked request.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Request {
+    pub models: Vec<ShadingModel>,
+    pub material: Material,
+    pub h_mm: f64,
+    pub edges: Vec<f64>,
+}
+
+/// Checks every argument (no GPU work); the message names what is wrong.
+pub fn validate(args: &ProfileArgs) -> Result<Request, String> {
+    let h = args.light_height_mm;
+    if !(h.is_finite() && h >= H_RANGE_MM.0 && h <= H_RANGE_MM.1) {
+        return Err(format!(
+            "--light-height-mm {h} out of range [{}, {}]",
+            H_RANGE_MM.0, H_RANGE_MM.1
+        ));
+    }
+    let eta = args.eta.unwrap_or(args.material.eta);
+    if !(eta.is_finite() && (1.0..=3.0).contains(&eta)) {
+        return Err(format!("--eta {eta} out of range [1, 3]"));
+    }
+    let g = args.g;
+    if !(g.is_finite() && g.abs() <= 0.99) {
+        return Err(format!("--g {g} out of range [-0.99, 0.99]"));
+    }
+    let edges = match &args.edges_mm {
+        Some(e) => {
+            check_edges(e)?;
+            e.clone()
+        }
+        None => default_edges(h),
+    };
+    let models = if args.shading.is_empty() {
+        ShadingModel::ALL.to_vec()
+    } else {
+        let mut m: Vec<ShadingModel> = Vec::new();
+        for &x in &args.shading {
+            if !m.contains(&x) {
+                m.push(x);
+            }
+        }
+        m
+    };
+    Ok(Request {
+        models,
+        material: Material {
+            eta,
+            g,
+            ..args.material
+        },
+        h_mm: h,
+        edges,
+    })
+}
+
+fn check_edges(e: &[f64]) -> Result<(), String> {
+    let list = || {
+        e.iter()
+            .map(|x| x.to_string())
+            .collect::<Vec<_>>()
+            .join(",")
+    };
+    if e.len() < 2 {
+        return Err(format!(
+            "--edges-mm `{}`: needs at least 2 edges (one annulus)",
+            list()
+        ));
+    }
+    if e.iter().any(|x| !x.is_finite()) {
+        return Err(format!(
+            "--edges-mm `{}`: every edge must be finite",
+            list()
+        ));
+    }
+    if e[0] < 0.0 {
+        return Err(format!("--edges-mm `{}`: radii must be ≥ 0", list()));
+    }
+    if e.windows(2).any(|w| w[0] >= w[1]) {
+        return Err(format!(
+            "--edges-mm `{}`: edges must be strictly increasing",
+            list()
+        ));
+    }
+    if e[e.len() - 1] > MAX_RADIUS_MM {
+        return Err(format!(
+            "--edges-mm `{}`: the last edge exceeds {MAX_RADIUS_MM} mm",
+            list()
+        ));
+    }
+    Ok(())
+}
+
+/// [`DEFAULT_BINS`] annuli from 0 to 4H + 20 mm, sinh-spaced: the first H/4 wide (but at least
+/// two of the probe's pixels, so every annulus holds pixel centres), widening outward.
+pub fn default_edges(h_mm: f64) -> Vec<f64> {
+    let r_max = 4.0 * h_mm + 20.0;
+    // The probe's view reaches 1.1 r_max + 2 mm from the centre over its pixels.
+    let pixel = 2.0 * (1.1 * r_max + 2.0) / dermis_core::probe::PIXELS as f64;
+    let first = (0.25 * h_mm).max(2.0 * pixel);
+    let n = DEFAULT_BINS as f64;
+    let width = |a: f64| r_max * (a / n).sinh() / a.sinh();
+    let a = if first >= r_max / n {
+        0.0
+    } else {
+        let (mut lo, mut hi) = (1e-6, 50.0);
+        for _ in 0..200 {
+            let mid = 0.5 * (lo + hi);
+            if width(mid) > first {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        0.5 * (lo + hi)
+    };
+    (0..=DEFAULT_BINS)
+        .map(|k| {
+            let x = if a == 0.0 {
+                r_max * k as f64 / n
+            } else {
+                r_max * (a * k as f64 / n).sinh() / a.sinh()
+            };
+            round3(x)
+        })
+        .collect()
+}
+
+/// Rounds to 3 significant digits (readable edges).
+fn round3(x: f64) -> f64 {
+    if x == 0.0 {
+        return 0.0;
+    }
+    format!("{x:.2e}").parse().unwrap_or(x)
+}
+
+/// Renders the profile of every requested model: (model, exitance per annulus).
+pub fn render(gpu: &Gpu, req: &Request) -> Result<Vec<(ShadingModel, Vec<[f64; 3]>)>, String> {
+    let mut probe = Probe::new(gpu);
+    let scene = Scene::PointLight { h_mm: req.h_mm };
+    req.models
+        .iter()
+        .map(|&m| {
+            probe
+                .render(gpu, m, &req.material, &scene, &req.edges)
+                .map(|e| (m, e))
+                .map_err(|e| format!("{}: {e}", m.name()))
+        })
+        .collect()
+}
+
+/// The JSON report.
+pub fn to_json(edges: &[f64], profiles: &[(ShadingModel, Vec<[f64; 3]>)]) -> Value {
+    let mut models = Map::new();
+    for (m, e) in profiles {
+        models.insert(m.name().into(), json!({ "exitance": e }));
+    }
+    json!({ "edges_mm": edges, "models": models })
+}
+
+/// The human table: one block per model, a row per annulus.
+pub fn table(req: &Request, profiles: &[(ShadingModel, Vec<[f64; 3]>)]) -> String {
+    let m = &req.material;
+    let mut s = format!(
+        "flat medium, {} (η = {}, g = {}), point light of unit power at h = {} mm\n\
+         M(r) averaged over each annulus, mm⁻² per unit source power\n",
+        m.name, m.eta, m.g, req.h_mm
+    );
+    for (model, e) in profiles {
+        s += &format!(
+            "\n{}\n  {:>17}  {:>11} {:>11} {:>11}\n",
+            model.name(),
+            "r [mm]",
+            "R",
+            "G",
+            "B"
+        );
+        for (w, v) in req.edges.windows(2).zip(e) {
+            s += &format!(
+                "  {:>8.3}–{:<8.3}  {:>11.4e} {:>11.4e} {:>11.4e}\n",
+                w[0], w[1], v[0], v[1], v[2]
+            );
+        }
+    }
+    s
+}
+
+pub fn run(args: ProfileArgs) -> Result<(), String> {
+    let req = validate(&args)?;
+    let gpu = Gpu::headless().map_err(|e| e.to_string())?;
+    let profiles = render(&gpu, &req)?;
+    if args.json {
+        println!(
+            "{}",
+            serde_json::to_string(&to_json(&req.edges, &profiles)).map_err(|e| e.to_string())?
+        );
+    } else {
+        print!("{}", table(&req, &profiles));
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn default_edges_are_valid_and_reach_4h_plus_20() {
+        for h in [0.01, 0.5, 2.0, 5.0, 20.0, 1000.0] {
+            let e = default_edges(h);
+            assert_eq!(e.len(), DEFAULT_BINS + 1);
+            check_edges(&e).unwrap();
+            assert!(Scene::PointLight { h_mm: h }.validate(&e).is_ok());
+            let last = e[DEFAULT_BINS];
+            assert!(
+                (last - (4.0 * h + 20.0)).abs() <= 0.01 * last,
+                "{h}: {last}"
+            );
+        }
+        // h = 5: the first annulus is h/4 wide.
+        let e = default_edges(5.0);
+        assert!((e[1] - 1.25).abs() < 0.01, "{e:?}");
+    }
+
+    #[test]
+    fn bad_edges() {
+        assert!(check_edges(&[1.0]).is_err());
+        assert!(check_edges(&[0.0, f64::NAN]).is_err());
+        assert!(check_edges(&[-1.0, 1.0]).is_err());
+        assert!(check_edges(&[0.0, 2.0, 1.0]).is_err());
+        assert!(check_edges(&[0.0, 1.0, 1.0]).is_err());
+        assert!(check_edges(&[0.0, 1.0, 2.0]).is_ok());
+    }
+}
