@@ -1,7 +1,7 @@
 // Mobile tier: pre-integrated skin (Penner & Borshukov 2011). The material's measured
 // diffusion profile is integrated once over spheres of every radius under a directional light
-// (core/src/shading/preintegrated.rs) into a LUT over (n·l, curvature); per pixel one fetch
-// per channel, no pass. A point light's irradiance is blurred by lifting the light by the
+// (core/src/shading/preintegrated.rs) into a LUT over (n·l, curvature); per pixel one fetch,
+// no pass. A point light's irradiance is blurred by lifting the light by the
 // kernel's Poisson height (the Poisson kernel is its own semigroup: blurring the irradiance of
 // a light at height h with a Poisson kernel of height s gives the light at height h + s).
 #import common
@@ -10,32 +10,41 @@
 @group(1) @binding(1) var lut: texture_2d<f32>;
 @group(1) @binding(2) var lut_sampler: sampler;
 
-// Exitance per unit irradiance of the lifted light, per channel.
-fn lifted_response(s: Surface, lift_mm: f32, v: f32, channel: u32) -> f32 {
-    // Height of the light over the tangent plane and its distance (mm).
-    let d = s.light_dist * 1000.0;
-    let h = dot(s.n, s.l) * d;
-    let hl = h + lift_mm;
-    let d2 = d * d + 2.0 * h * lift_mm + lift_mm * lift_mm;
-    let mu = clamp(hl * inverseSqrt(max(d2, 1e-12)), -1.0, 1.0);
-    // The LUT holds M/E_beam over (n·l, curvature): u = (n·l + 1)/2.
-    let m = textureSampleLevel(lut, lut_sampler, vec2<f32>(0.5 * (mu + 1.0), v), 0.0);
-    // Irradiance scale of the lifted light relative to the real one (normal incidence).
-    let scale = (d * d) / max(d2, 1e-12);
-    return m[channel] * scale;
+// LUT rows (core/src/shading/preintegrated.rs): 32 rows of sphere response over
+// (n·l, curvature), then the exit/entry Fresnel factors over cos θ, then the backlit slab's
+// transmittance over log2(t/0.25 mm)/9.
+const LUT_ROWS: f32 = 34.0;
+const CURVATURE_ROWS: f32 = 32.0;
+
+fn lut_row(u: f32, row: f32) -> vec4<f32> {
+    let u_tex = (clamp(u, 0.0, 1.0) * 63.0 + 0.5) / 64.0;
+    return textureSampleLevel(lut, lut_sampler, vec2<f32>(u_tex, (row + 0.5) / LUT_ROWS), 0.0);
 }
 
 fn shade(s: Surface) -> vec3<f32> {
-    let exit = sss_exit(s);
-    // Curvature axis: v = R0 / (R0 + ρ).
+    let exit = lut_row(dot(s.n, s.v), CURVATURE_ROWS).r;
+    // Curvature axis: v = R0 / (R0 + ρ), within the curvature rows.
     let rho_mm = s.curvature_radius * 1000.0;
     let v = model.misc.w / (model.misc.w + rho_mm);
-    let e = irradiance(s);
-    let response = vec3<f32>(
-        lifted_response(s, model.lift.r, v, 0u),
-        lifted_response(s, model.lift.g, v, 1u),
-        lifted_response(s, model.lift.b, v, 2u),
-    );
+    let v_tex = min(v * CURVATURE_ROWS, CURVATURE_ROWS - 0.5) / LUT_ROWS;
+    // The light lifted by each channel's Poisson height s_c: its distance² over the tangent
+    // plane, d² + 2 h s_c + s_c² (h its height, mm), scales each channel's irradiance; one
+    // fetch at the cosine of the light lifted by the channels' mean height serves all three.
+    let d = s.light_dist * 1000.0;
+    let h = dot(s.n, s.l) * d;
+    let lift = model.lift.rgb;
+    let d2 = max(vec3<f32>(d * d) + 2.0 * h * lift + lift * lift, vec3<f32>(1e-12));
+    let mean = dot(lift, vec3<f32>(1.0 / 3.0));
+    let mu = clamp((h + mean) * inverseSqrt(max(d * d + 2.0 * h * mean + mean * mean, 1e-12)), -1.0, 1.0);
+    // The sphere response M/E_beam: u = (n·l + 1)/2.
+    let m = textureSampleLevel(lut, lut_sampler, vec2<f32>(0.5 * (mu + 1.0), v_tex), 0.0).rgb;
+    let response = m * (d * d) / d2;
+    // Translucency (subsurface.wgsl's, with its Fresnel and slab tables read from the LUT).
+    let back = max(-dot(s.n, s.l), 0.0);
+    let path = s.thickness * model.misc.z * back;
+    let entry = lut_row(back, CURVATURE_ROWS).g;
+    let slab = lut_row(log2(max(path, 0.25) / 0.25) / 9.0, CURVATURE_ROWS + 1.0).rgb;
+    let through = back * entry * slab;
     let ambient = PI * frame.ambient.rgb * model.albedo.rgb;
-    return exit * (ambient + e * response + sss_translucency(s));
+    return exit * (ambient + irradiance(s) * (response + through));
 }

@@ -11,16 +11,17 @@
 struct ModelParams {
     // rgb: diffuse reflectance of the medium at normal incidence per incident power; w: η.
     albedo: vec4<f32>,
-    // x: 1/(π C(η)); y: 1 for models with translucency (their composition sets
-    // TRANSLUCENCY); z: mm per metre of thickness;
+    // x: 1/(π C(η)); y: 1/F_t(η, 1); z: mm per metre of thickness;
     // w: the pre-integration LUT's curvature scale R0 (mm).
     misc: vec4<f32>,
-    // rgb: height (mm) the light is lifted by to blur a point light's irradiance (preintegrated).
+    // rgb: height (mm) the light is lifted by to blur a point light's irradiance (preintegrated);
+    // w: 1 for models with translucency (their composition sets TRANSLUCENCY; read by the f64
+    // twin).
     lift: vec4<f32>,
     // q(μ_k) = R(μ_k)/R(1), μ_k = (k/6)² (tables are linear in √μ): oblique incidence
     // relative to normal, per channel.
     oblique: array<vec4<f32>, 7>,
-    // Diffuse transmittance of a slab 0.25 · 2^k mm thick lit from behind, per channel.
+    // ln of the diffuse transmittance of a slab 0.25 · 2^k mm thick lit from behind.
     slab: array<vec4<f32>, 7>,
     // δ(μ_k) (mm): how far forward light entering at μ_k leaves, per channel.
     shift: array<vec4<f32>, 7>,
@@ -74,7 +75,8 @@ fn sss_spread(s: Surface) -> vec3<f32> {
     let to_light = s.l * s.light_dist;
     let delta = min(sss_shift(max(nl, 0.0)), vec3<f32>(rho));
     let ddelta = -sss_shift_slope(max(nl, 0.0)) * max(nl, 0.0) * len / (s.light_dist * model.misc.z);
-    let light = frame.light_pos.w * frame.light_color.rgb;
+    // The light as it reaches this point (occluded here: nothing is spread from here).
+    let light = s.light;
     var out = vec3<f32>(0.0);
     for (var c = 0u; c < 3u; c = c + 1u) {
         let back = dir * (delta[c] / model.misc.z);
@@ -97,24 +99,17 @@ fn sss_exit(s: Surface) -> f32 {
 }
 
 #ifdef TRANSLUCENCY
-// Diffuse transmittance through `t_mm` of material, interpolated in log T between the slab
-// nodes (log-spaced in thickness);
-// past the thickest node it decays exponentially at the rate of the last interval.
+// Diffuse transmittance through `t_mm` of material: the table holds ln T at thicknesses
+// log-spaced 0.25 · 2^k mm, interpolated linearly (T falls off exponentially); past the
+// thickest node ln T goes on at the slope of the last interval (8 mm wide).
 fn sss_slab(t_mm: f32) -> vec3<f32> {
     let x = log2(max(t_mm, 0.25) / 0.25);
     if (x >= 6.0) {
-        let last = max(model.slab[6].rgb, vec3<f32>(1e-30));
-        let prev = max(model.slab[5].rgb, last);
-        // Per-mm decay rate over the last interval (8 mm wide).
-        let k = log(prev / last) / 8.0;
-        return last * exp(-k * (t_mm - 16.0));
+        let slope = (model.slab[6].rgb - model.slab[5].rgb) / 8.0;
+        return exp(model.slab[6].rgb + slope * (t_mm - 16.0));
     }
-    // Transmittance falls off exponentially: interpolate its logarithm.
     let i = min(u32(x), 5u);
-    let f = x - f32(i);
-    let lo = log(max(model.slab[i].rgb, vec3<f32>(1e-30)));
-    let hi = log(max(model.slab[i + 1u].rgb, vec3<f32>(1e-30)));
-    return exp(mix(lo, hi, f));
+    return exp(mix(model.slab[i].rgb, model.slab[i + 1u].rgb, x - f32(i)));
 }
 
 #endif
@@ -124,7 +119,12 @@ fn sss_slab(t_mm: f32) -> vec3<f32> {
 fn sss_translucency(s: Surface) -> vec3<f32> {
 #ifdef TRANSLUCENCY
     let back = max(-dot(s.n, s.l), 0.0);
-    return irradiance(s) * back * sss_oblique(back) * sss_slab(s.thickness * model.misc.z);
+    // The path through the material along the light: the thickness (through the surface
+    // along its normal) times |n·l|, exact for a sphere's chord, the slab's at normal light.
+    let path = s.thickness * model.misc.z * back;
+    // Entry through the far face: its Fresnel transmission relative to normal incidence.
+    let entry = fresnel_transmittance(model.albedo.w, back) * model.misc.y;
+    return irradiance(s) * back * entry * sss_slab(path);
 #else
     return vec3<f32>(0.0);
 #endif

@@ -85,3 +85,63 @@ fn out_of_range_clip() {
         "clip",
     );
 }
+
+#[test]
+fn profile_bad_input() {
+    let h = |v: &'static str| ["profile", "--shading", "ward", "--light-height-mm", v];
+    assert_one_line_error(
+        &["profile", "--shading", "phong", "--light-height-mm", "5"],
+        "phong",
+    );
+    for bad in ["0", "-1", "nan", "inf", "1e9"] {
+        assert_one_line_error(&h(bad), "light-height-mm");
+    }
+    assert_one_line_error(&["profile", "--shading", "ward"], "required");
+    for (edges, needle) in [
+        ("0,2,1", "increasing"),
+        ("0,1,1", "increasing"),
+        ("-1,2", "≥ 0"),
+        ("0,nan", "finite"),
+        ("5", "at least 2"),
+        ("0,x", "x"),
+    ] {
+        let mut args = h("5").to_vec();
+        args.extend(["--edges-mm", edges]);
+        assert_one_line_error(&args, needle);
+    }
+    for eta in ["0", "-1", "nan"] {
+        let mut args = h("5").to_vec();
+        args.extend(["--eta", eta]);
+        assert_one_line_error(&args, "eta");
+    }
+    for g in ["1", "-1", "1.5", "nan"] {
+        let mut args = h("5").to_vec();
+        args.extend(["--g", g]);
+        assert_one_line_error(&args, "--g");
+    }
+}
+
+#[test]
+fn bench_shading_and_shaders_bad_input() {
+    let out = std::env::temp_dir().join(format!("dermis-bench-cli-{}", std::process::id()));
+    let out = out.to_str().unwrap();
+    for rounds in ["0", "1", "100000"] {
+        assert_one_line_error(
+            &["bench", "shading", "--out", out, "--rounds", rounds],
+            "rounds",
+        );
+    }
+    assert_one_line_error(
+        &[
+            "bench",
+            "shading",
+            "--out",
+            out,
+            "--mali",
+            "/nonexistent/m.json",
+        ],
+        "m.json",
+    );
+    assert_one_line_error(&["shaders", "--spirv", "/proc/dermis-no"], "dermis-no");
+    let _ = std::fs::remove_dir_all(out);
+}

@@ -9,12 +9,12 @@ use glam::{Mat4, Vec3};
 const FPS: f64 = 60.0;
 const DT: f64 = 1.0 / FPS;
 
-/// Frame cost (ms) of each tier at load 1: oss, burley, ward.
+/// Frame cost (ms) of each tier at load 1: tabulated, preintegrated, ward.
 const COST: [f64; 3] = [14.0, 9.0, 6.0];
 
 fn governor() -> Governor {
     Governor::new(
-        Tiers::for_choice(ShadingModel::Oss),
+        Tiers::for_choice(ShadingModel::Tabulated),
         GovernorConfig::for_fps(FPS),
     )
 }
@@ -68,8 +68,19 @@ fn at_most_one_change_per_window(run: &Run, window_frames: usize) {
 #[test]
 fn tier_list_is_ordered_and_deduplicated() {
     use ShadingModel::*;
-    assert_eq!(Tiers::for_choice(Oss).as_slice(), &[Oss, Burley, Ward]);
-    assert_eq!(Tiers::for_choice(Burley).as_slice(), &[Burley, Ward]);
+    assert_eq!(
+        Tiers::for_choice(Tabulated).as_slice(),
+        &[Tabulated, Preintegrated, Ward]
+    );
+    assert_eq!(
+        Tiers::for_choice(Burley).as_slice(),
+        &[Burley, Preintegrated, Ward]
+    );
+    assert_eq!(
+        Tiers::for_choice(Preintegrated).as_slice(),
+        &[Preintegrated, Ward]
+    );
+    assert_eq!(Tiers::for_choice(Oss).as_slice(), &[Oss, Ward]);
     assert_eq!(Tiers::for_choice(Ward).as_slice(), &[Ward]);
     assert_eq!(Tiers::for_choice(WardPrinted).as_slice(), &[WardPrinted]);
     assert_eq!(Tiers::for_choice(Dipole).model(7), Ward);
@@ -88,7 +99,7 @@ fn overload_is_brought_back_under_target_with_one_change_per_window() {
     let mut g = governor();
     let target = g.config.target_ms;
     let window = (g.config.window_s * FPS).round() as usize;
-    // 10 s normal, 30 s of 1.6× overload (oss 22.4 ms, burley 14.4 ms), 40 s normal again.
+    // 10 s normal, 30 s of 1.6× overload (tabulated 22.4 ms, preintegrated 14.4 ms), 40 s normal again.
     let (start, end, total) = (600, 2400, 4800);
     let load = |f: usize| if (start..end).contains(&f) { 1.6 } else { 1.0 };
     let run = simulate(&mut g, total, load, |_| Needs::default());
@@ -101,7 +112,7 @@ fn overload_is_brought_back_under_target_with_one_change_per_window() {
     for w in run.costs[end - 1200..end].chunks(window) {
         assert!(mean(w) < target, "window mean {} ≥ {target}", mean(w));
     }
-    // During the overload: the governor settled on burley, it did not oscillate.
+    // During the overload: the governor settled on preintegrated, it did not oscillate.
     let during: Vec<_> = run
         .changes
         .iter()
@@ -119,7 +130,7 @@ fn overload_is_brought_back_under_target_with_one_change_per_window() {
 fn heavy_overload_steps_down_to_the_floor() {
     let mut g = governor();
     let window = (g.config.window_s * FPS).round() as usize;
-    // 3× load: oss 42 ms, burley 27 ms, ward 18 ms: nothing fits; the floor is held.
+    // 3× load: tabulated 42 ms, preintegrated 27 ms, ward 18 ms: nothing fits; the floor is held.
     let run = simulate(&mut g, 60 * 30, |_| 3.0, |_| Needs::default());
     at_most_one_change_per_window(&run, window);
     assert_eq!(run.changes.len(), 2, "{:?}", run.changes);
@@ -128,8 +139,8 @@ fn heavy_overload_steps_down_to_the_floor() {
 
 #[test]
 fn no_oscillation_at_the_edge_of_the_budget() {
-    // oss just over the target (17.1 ms), burley comfortably under: the governor must settle
-    // on burley and retry oss ever more rarely.
+    // tabulated just over the target (17.1 ms), preintegrated comfortably under: the governor
+    // must settle on preintegrated and retry tabulated ever more rarely.
     let mut g = governor();
     let window = (g.config.window_s * FPS).round() as usize;
     let run = simulate(&mut g, 60 * 300, |_| 1.22, |_| Needs::default());

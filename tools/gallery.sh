@@ -6,7 +6,7 @@ cd "$(dirname "$0")/.."
 dermis=${1:-target/release/dermis}
 out=docs/gallery
 mkdir -p "$out"
-for m in dipole ward oss oss-stable burley; do
+for m in dipole ward oss oss-stable burley tabulated preintegrated; do
   "$dermis" render --shading "$m" --material white-coat --light 0.3,3.2,0.6 --clip 0 --time 0.5 \
     --size 480x540 --out "$out/fig1-white-coat-$m.png"
   "$dermis" render --shading "$m" --material skin1 --clip 1 --time 0.2 \

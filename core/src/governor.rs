@@ -4,11 +4,18 @@
 //! so tests drive it with a simulated cost model.
 //!
 //! # Tiers
-//! An ordered list, richest first: `[player's chosen model, burley, ward]` (duplicates
-//! removed, so choosing `burley` gives `[burley, ward]` and choosing `ward` gives `[ward]`).
-//! `burley` is the cheapest model that still scatters light under the skin; `ward` is a
-//! plain BRDF with no subsurface term, the floor. Every tier's pipeline is built at load by
-//! the renderer, so a tier change creates nothing on the GPU.
+//! An ordered list, richest first: the player's chosen model, then the models of the measured
+//! accuracy–cost front ([`FRONT`]: `tabulated`, `preintegrated`, `ward`) that are cheaper than
+//! it. From `dermis bench shading` (docs/results/shading.md: error against the path-traced
+//! references, Mali-G57 cycles per pixel at close-up, lavapipe time): `tabulated` is by far
+//! the most accurate model (overall mean |ln| error 0.14) but its screen-space pass makes it
+//! ~35× Ward's G57 cycles per pixel (~19× lavapipe time) at close-up; `preintegrated` is the
+//! most accurate single-pass model (1.2) at 1.7× Ward (1.2× lavapipe); `ward` (4.7: a plain
+//! BRDF, no light under the skin) is the floor. Every single-pass model costs 1.2–1.7× Ward, so
+//! only a screen-space choice gets the middle tier: `tabulated` or `burley` →
+//! `[chosen, preintegrated, ward]`; `preintegrated`, `dipole`, `oss`, … → `[chosen, ward]`;
+//! `ward` (or `ward-printed`) → `[ward]`. Every tier's pipeline is built at load by the
+//! renderer, so a tier change creates nothing on the GPU.
 //!
 //! # What a frame needs ([`Needs`])
 //! - **coverage**: the character's projected screen coverage (fraction of the frame covered by
@@ -49,6 +56,13 @@ use crate::shading::ShadingModel;
 /// The most tiers a list holds.
 pub const MAX_TIERS: usize = 3;
 
+/// The measured accuracy–cost front, richest first: the tiers a choice steps down to.
+pub const FRONT: [ShadingModel; MAX_TIERS] = [
+    ShadingModel::Tabulated,
+    ShadingModel::Preintegrated,
+    ShadingModel::Ward,
+];
+
 /// The ordered tier list, richest first (no allocation).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Tiers {
@@ -57,18 +71,17 @@ pub struct Tiers {
 }
 
 impl Tiers {
-    /// `[chosen, burley, ward]` without duplicates; `[burley, ward]` for burley; `[ward]`
-    /// (or `[ward-printed]`) for a plain BRDF.
+    /// `[chosen]` followed by the [`FRONT`] models cheaper than it (see the module docs).
     pub fn for_choice(chosen: ShadingModel) -> Self {
         let mut t = Tiers {
             models: [chosen; MAX_TIERS],
             len: 1,
         };
-        // A plain BRDF is already the floor; burley is cheaper than every other SSS model.
         let cheaper: &[ShadingModel] = match chosen {
+            // A plain BRDF is already the floor.
             ShadingModel::Ward | ShadingModel::WardPrinted => &[],
-            ShadingModel::Burley => &[ShadingModel::Ward],
-            _ => &[ShadingModel::Burley, ShadingModel::Ward],
+            m if m.effects().screen_space => &FRONT[1..],
+            _ => &FRONT[2..],
         };
         for &m in cheaper {
             if !t.models[..t.len].contains(&m) {

@@ -108,8 +108,11 @@ impl Progress {
     }
 }
 
+/// The acceptance materials with their reference sets.
+type References = Vec<(Material, ReferenceSet)>;
+
 /// The checks that need no GPU: rounds, output directory, reference files, Mali file.
-fn prepare(args: &ShadingArgs) -> Result<(Vec<(Material, ReferenceSet)>, Option<Value>), String> {
+fn prepare(args: &ShadingArgs) -> Result<(References, Option<Value>), String> {
     if !(ROUNDS.0..=ROUNDS.1).contains(&args.rounds) {
         return Err(format!(
             "--rounds {} out of range ({}..={})",
@@ -367,7 +370,9 @@ fn build_report(
                 .iter()
                 .map(|x| {
                     json!({"material": x.material, "scene": x.scene.label(),
-                           "result": match &x.result { Ok(e) => json!(e), Err(e) => json!(format!("error: {e}")) }})
+                           "result": match &x.result {
+                               Ok(e) => json!({"mean_log": e.mean_log_all, "integrated": e.integrated_all, "mc_rel_se": e.ref_rel_se_all}),
+                               Err(e) => json!(format!("error: {e}")) }})
                 })
                 .collect();
             row["error"] = json!({

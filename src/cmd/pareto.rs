@@ -104,8 +104,12 @@ pub fn front(points: &[(f64, f64)]) -> Vec<usize> {
     on
 }
 
+fn arr(v: &Value) -> impl Iterator<Item = &Value> {
+    v.as_array().into_iter().flatten()
+}
+
 fn models(report: &Value) -> impl Iterator<Item = &Value> {
-    report["models"].as_array().into_iter().flatten()
+    arr(&report["models"])
 }
 
 /// The models on the front, cheapest first.
@@ -139,30 +143,14 @@ fn cycles(m: &Value) -> String {
 
 /// The one table (plus the notes a reader needs to read it).
 pub fn markdown(report: &Value) -> String {
-    let fams: Vec<String> = report["families"]
-        .as_array()
-        .into_iter()
-        .flatten()
-        .filter_map(|f| f.as_str().map(String::from))
-        .collect();
-    let refs: Vec<String> = report["references"]
-        .as_array()
-        .into_iter()
-        .flatten()
-        .map(|r| {
-            format!(
-                "{} (η = {}, g = {}, {} photons per channel)",
-                r["material"].as_str().unwrap_or("?"),
-                r["eta"],
-                r["g"],
-                r["photons"]
-            )
-        })
+    let fams: Vec<&str> = arr(&report["families"]).filter_map(Value::as_str).collect();
+    let refs: Vec<&str> = arr(&report["references"])
+        .filter_map(|r| r["material"].as_str())
         .collect();
     let cs = &report["cost_scene"];
     let mut s = format!(
         "Adapter: {} — {}. Errors: mean |ln(model/MC)| over the bins above the Monte Carlo's noise floor, \
-         per scene family, averaged over {}; overall = the four kinds (point, edge, sphere, slab) weighted equally; \
+         per scene family, averaged over {} (η = 1.4, g = 0); overall = the four kinds (point, edge, sphere, slab) weighted equally; \
          integrated = |ln(∫model/∫MC)|, same weighting. Cost: {}x{} target filled by a flat skin patch \
          ({} mm wide, {:.2} mm/pixel, coverage {:.0} %), point light, both passes for screen-space models, {} rounds. \
          Mali: fragment cycles per pixel (`bound`, Mesa {}), the subsurface pass added for screen-space models; \
@@ -187,18 +175,14 @@ pub fn markdown(report: &Value) -> String {
         s += "| *MC rel. SE* | ";
         s += &fams
             .iter()
-            .map(|f| num(&e["mc_rel_se"][f], 4))
+            .map(|f| num(&e["mc_rel_se"][*f], 4))
             .collect::<Vec<_>>()
             .join(" | ");
         s += &format!(" | {} | | | | | | | |\n", num(&e["mc_rel_se_overall"], 4));
     }
     for r in models(report) {
         let e = &r["error"];
-        let errs: Vec<String> = if e.is_object() {
-            fams.iter().map(|f| num(&e["families"][f], 3)).collect()
-        } else {
-            vec!["–".into(); fams.len()]
-        };
+        let errs: Vec<String> = fams.iter().map(|f| num(&e["families"][*f], 3)).collect();
         let m = &r["mali"];
         s += &format!(
             "| {} | {} | {} | {} | {} | {} ({}–{}) | {} | {} | {} | {} |\n",

@@ -32,7 +32,7 @@ pub struct ProfileArgs {
     #[arg(long, default_value = "skin1", value_parser = parse_material)]
     pub material: Material,
     /// Relative index of refraction (default: the preset's).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub eta: Option<f64>,
     /// Henyey–Greenstein anisotropy g.
     #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
@@ -41,7 +41,7 @@ pub struct ProfileArgs {
     #[arg(long, allow_negative_numbers = true)]
     pub light_height_mm: f64,
     /// Annulus edges (mm), comma-separated, ascending, ≥ 0 (default: 24 annuli out to 4H + 20).
-    #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
     pub edges_mm: Option<Vec<f64>>,
     /// Print JSON: {"edges_mm": [...], "models": {"<name>": {"exitance": [[r, g, b], ...]}}}.
     #[arg(long)]
@@ -184,8 +184,11 @@ fn round3(x: f64) -> f64 {
     format!("{x:.2e}").parse().unwrap_or(x)
 }
 
-/// Renders the profile of every requested model: (model, exitance per annulus).
-pub fn render(gpu: &Gpu, req: &Request) -> Result<Vec<(ShadingModel, Vec<[f64; 3]>)>, String> {
+/// A model's profile: the exitance per annulus.
+pub type Profile = (ShadingModel, Vec<[f64; 3]>);
+
+/// Renders the profile of every requested model.
+pub fn render(gpu: &Gpu, req: &Request) -> Result<Vec<Profile>, String> {
     let mut probe = Probe::new(gpu);
     let scene = Scene::PointLight { h_mm: req.h_mm };
     req.models
@@ -200,7 +203,7 @@ pub fn render(gpu: &Gpu, req: &Request) -> Result<Vec<(ShadingModel, Vec<[f64; 3
 }
 
 /// The JSON report.
-pub fn to_json(edges: &[f64], profiles: &[(ShadingModel, Vec<[f64; 3]>)]) -> Value {
+pub fn to_json(edges: &[f64], profiles: &[Profile]) -> Value {
     let mut models = Map::new();
     for (m, e) in profiles {
         models.insert(m.name().into(), json!({ "exitance": e }));
@@ -209,7 +212,7 @@ pub fn to_json(edges: &[f64], profiles: &[(ShadingModel, Vec<[f64; 3]>)]) -> Val
 }
 
 /// The human table: one block per model, a row per annulus.
-pub fn table(req: &Request, profiles: &[(ShadingModel, Vec<[f64; 3]>)]) -> String {
+pub fn table(req: &Request, profiles: &[Profile]) -> String {
     let m = &req.material;
     let mut s = format!(
         "flat medium, {} (η = {}, g = {}), point light of unit power at h = {} mm\n\

@@ -1,7 +1,10 @@
 //! `dermis shaders --spirv DIR`: every composed shader the renderer can build, as SPIR-V, one
 //! module per stage (`NAME.vert.spv`, `NAME.frag.spv`): the character shader of each shading
-//! model, the unlit baseline (`unlit`) and the screen-space subsurface pass (`sss_pass`).
-//! `tools/mali/cycles.sh DIR` reads them (Mali-G52/G57 cycle estimates).
+//! model, the unlit baseline (`unlit`) and the screen-space subsurface pass (`sss_pass`),
+//! plus `NAME_x2…` variants with one loop's body written twice ([`DOUBLED`]), from which
+//! `bench shading` weights Mesa's static counts by the loops' iteration counts.
+//! `tools/mali/cycles.sh DIR` reads them (Mali-G52/G57 cycle estimates; the JSON for the
+//! current shaders is `docs/results/mali-cycles.json`).
 //!
 //! The SPIR-V is written with the options wgpu's Vulkan backend uses on a device without
 //! robustness2 (index, buffer and image loads bounds-checked by `Restrict`, loops bounded, no

@@ -70,7 +70,7 @@ pub struct SoakArgs {
     /// Wall-clock seconds to play.
     #[arg(long, default_value_t = 60.0)]
     pub seconds: f64,
-    /// The player's chosen shading model: tier 0 of `[chosen, burley, ward]`.
+    /// The player's chosen shading model: tier 0 (see `governor::Tiers::for_choice`).
     #[arg(long, default_value = "oss", value_parser = parse_model)]
     pub shading: ShadingModel,
     /// Frame size WxH.

@@ -22,7 +22,7 @@
 
 use std::sync::{Arc, Mutex};
 
-use super::Material;
+use super::{fresnel, Material};
 use crate::mc::{self, Medium};
 
 /// Number of rings (besides the inner disk).
@@ -48,6 +48,11 @@ pub struct Budget {
     pub kernel_events: u64,
     /// … and of each oblique or slab run.
     pub events: u64,
+    /// Events after which one photon is stopped (its weight counted as capped): at albedo
+    /// → 1 and σ → ∞ a walk is otherwise unbounded.
+    pub max_events: u64,
+    /// Fewest photons a table is measured with, whatever the event caps.
+    pub min_photons: u64,
 }
 
 /// What the renderer bakes at material load.
@@ -57,26 +62,24 @@ pub const DEFAULT_BUDGET: Budget = Budget {
     slab: 30_000,
     kernel_events: 8_000_000,
     events: 1_500_000,
+    max_events: 200_000,
+    min_photons: 500,
 };
 
 /// Strips on each side of the edge for the forward shift.
 const STRIPS: usize = 48;
-/// A photon past this many events contributes nothing further (its weight is reported as
-/// capped); at albedo 1 the walk's tail is otherwise unbounded.
-const MAX_EVENTS: u64 = 200_000;
 
 /// A quick bake for tests that run the per-pixel code over many materials (the tables are
 /// noisier, the code paths the same).
 pub const QUICK_BUDGET: Budget = Budget {
-    kernel: 2_000,
-    oblique: 500,
-    slab: 500,
-    kernel_events: 400_000,
-    events: 100_000,
+    kernel: 1_000,
+    oblique: 100,
+    slab: 100,
+    kernel_events: 100_000,
+    events: 10_000,
+    max_events: 2_000,
+    min_photons: 20,
 };
-
-/// Fewest photons a table is measured with, whatever the event cap.
-pub const MIN_PHOTONS: u64 = 500;
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Bake {
@@ -170,26 +173,34 @@ fn medium(m: &Material, c: usize) -> Medium {
     Medium::new(m.sigma_a[c], m.sigma_s_prime[c], m.g, m.eta)
 }
 
-/// Photons for a run of `geom`/`source` within `budget.events`: a pilot of 200 photons
-/// measures the events per photon.
+/// Photons for a run of `geom`/`source` within `events`: a pilot of a few photons measures
+/// the events per photon.
 fn photons_for(
     med: &Medium,
-    geom: mc::Geometry,
-    source: mc::Source,
+    (geom, source): (mc::Geometry, mc::Source),
     wanted: u64,
     events: u64,
+    budget: &Budget,
     seed: u64,
 ) -> u64 {
-    let pilot = 200;
-    let r = mc::simulate(med, geom, source, &detectors(&[]), pilot, seed ^ 0xA5A5, 1);
+    let pilot = 20.max(budget.min_photons.min(200));
+    let r = mc::simulate(
+        med,
+        geom,
+        source,
+        &detectors(&[], budget),
+        pilot,
+        seed ^ 0xA5A5,
+        1,
+    );
     let per_photon = (r.events as f64 / pilot as f64).max(1.0);
-    ((events as f64 / per_photon) as u64).clamp(MIN_PHOTONS, wanted.max(MIN_PHOTONS))
+    ((events as f64 / per_photon) as u64).clamp(budget.min_photons, wanted.max(budget.min_photons))
 }
 
-fn detectors(edges: &[f64]) -> mc::Detectors {
+fn detectors(edges: &[f64], budget: &Budget) -> mc::Detectors {
     mc::Detectors {
         edges: edges.to_vec(),
-        max_events: MAX_EVENTS,
+        max_events: budget.max_events,
         ..Default::default()
     }
 }
@@ -206,19 +217,20 @@ pub fn measure(m: &Material, budget: Budget, threads: usize) -> Bake {
     for c in 0..3 {
         let med = medium(m, c);
         let seed = SEED + 1000 * c as u64;
+        let normal = (semi, mc::Source::Normal);
         let n = photons_for(
             &med,
-            semi,
-            mc::Source::Normal,
+            normal,
             budget.kernel,
             budget.kernel_events,
+            &budget,
             seed,
         );
         let r = mc::simulate(
             &med,
             semi,
             mc::Source::Normal,
-            &detectors(&edges),
+            &detectors(&edges, &budget),
             n,
             seed,
             threads,
@@ -235,8 +247,16 @@ pub fn measure(m: &Material, budget: Budget, threads: usize) -> Bake {
             .collect();
         let oblique_run = |mu: f64, seed: u64| {
             let source = mc::Source::Collimated { mu };
-            let n = photons_for(&med, semi, source, budget.oblique, budget.events, seed);
-            let e = mc::edge::shadow_edge_with(&med, mu, &strips, MAX_EVENTS, n, seed, threads);
+            let n = photons_for(
+                &med,
+                (semi, source),
+                budget.oblique,
+                budget.events,
+                &budget,
+                seed,
+            );
+            let cap = budget.max_events;
+            let e = mc::edge::shadow_edge_with(&med, mu, &strips, cap, n, seed, threads);
             let r = e.reflectance.mean;
             // E[Δx]·R = ∫₀^∞ (R − M) dx − ∫_{−∞}^0 M dx; the beam travels toward −x.
             let moment: f64 = strips
@@ -257,8 +277,19 @@ pub fn measure(m: &Material, budget: Budget, threads: usize) -> Bake {
         for k in 1..OBLIQUE_NODES - 1 {
             let mu = oblique_node(k);
             let (r, delta) = oblique_run(mu, seed + 10 + k as u64);
-            oblique[k][c] = r / normal.max(f64::MIN_POSITIVE);
-            shift[k][c] = delta.max(0.0);
+            // Where the medium reflects (next to) nothing the ratio is noise: Fresnel's
+            // transmission ratio stands in; q stays within [0, 4] whatever the noise.
+            oblique[k][c] = if normal > 1e-9 {
+                (r / normal).clamp(0.0, 4.0)
+            } else {
+                fresnel::transmittance_shader(m.eta, mu)
+                    / fresnel::transmittance_shader(m.eta, 1.0).max(1e-12)
+            };
+            shift[k][c] = if delta.is_finite() {
+                delta.clamp(0.0, x_max)
+            } else {
+                0.0
+            };
         }
         oblique[0][c] = 0.0;
         oblique[OBLIQUE_NODES - 1][c] = 1.0;
@@ -269,19 +300,20 @@ pub fn measure(m: &Material, budget: Budget, threads: usize) -> Bake {
             let d = SLAB_FIRST_MM * (1u32 << k) as f64;
             let geom = mc::Geometry::Slab { d };
             let seed = seed + 100 + k as u64;
+            let source = mc::Source::Normal;
             let n = photons_for(
                 &med,
-                geom,
-                mc::Source::Normal,
+                (geom, source),
                 budget.slab,
                 budget.events,
+                &budget,
                 seed,
             );
             let r = mc::simulate(
                 &med,
                 geom,
-                mc::Source::Normal,
-                &detectors(&[]),
+                source,
+                &detectors(&[], &budget),
                 n,
                 seed,
                 threads,

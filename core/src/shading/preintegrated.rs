@@ -17,15 +17,23 @@
 
 use std::sync::{Arc, Mutex};
 
-use super::bake::{self, Bake};
-use super::subsurface::{Params, LUT_R0_MM};
-use super::Material;
+use super::bake::{self, Bake, SLAB_FIRST_MM};
+use super::subsurface::{self, Params, LUT_R0_MM};
+use super::{fresnel, Material};
 
-/// LUT size: n·l × curvature.
+/// LUT size: n·l × curvature …
 pub const LUT_U: usize = 64;
 pub const LUT_V: usize = 32;
+/// … plus two rows that turn per-pixel maths into fetches: row [`LUT_V`] holds the exit factor
+/// F_t(η, u)/(πC) (r) and the entry factor F_t(η, u)/F_t(η, 1) (g) over u = cos θ ∈ [0, 1];
+/// row `LUT_V + 1` the diffuse transmittance T of a backlit slab (rgb) over
+/// u = log2(t/0.25 mm)/[`SLAB_SPAN`] (0.25–128 mm), dense enough for linear filtering.
+pub const LUT_ROWS: usize = LUT_V + 2;
+/// Doublings of thickness the slab row spans from 0.25 mm.
+pub const SLAB_SPAN: f64 = 9.0;
 
-/// Per-channel exitance per unit irradiance, row-major over v then u, RGBA (A = 1).
+/// Per-channel exitance per unit irradiance, row-major over v then u, RGBA (A = 1), then the
+/// two factor rows (see [`LUT_ROWS`]).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Lut {
     pub texels: Vec<[f32; 4]>,
@@ -95,9 +103,20 @@ pub fn sphere_response(b: &Bake, mu: f64, rho: f64) -> [f64; 3] {
     })
 }
 
-/// Bakes the LUT for the tables `b`.
-pub fn bake_lut(b: &Bake) -> Lut {
-    let mut texels = vec![[0.0f32; 4]; LUT_U * LUT_V];
+/// Bakes the LUT for the tables `b` of material `m`.
+pub fn bake_lut(b: &Bake, m: &Material) -> Lut {
+    let mut texels = vec![[0.0f32; 4]; LUT_U * LUT_ROWS];
+    let p = params_from(b, m).pack();
+    let exit_norm = 1.0 / (std::f64::consts::PI * subsurface::exit_normalisation(m.eta));
+    let entry = fresnel::transmittance_shader(m.eta, 1.0).max(1e-12);
+    for i in 0..LUT_U {
+        let u = i as f64 / (LUT_U - 1) as f64;
+        let ft = fresnel::transmittance_shader(m.eta, u);
+        texels[LUT_V * LUT_U + i] = [(ft * exit_norm) as f32, (ft / entry) as f32, 0.0, 1.0];
+        let t = SLAB_FIRST_MM * 2f64.powf(u * SLAB_SPAN);
+        let slab = subsurface::slab_packed(&p, t);
+        texels[(LUT_V + 1) * LUT_U + i] = [slab.x as f32, slab.y as f32, slab.z as f32, 1.0];
+    }
     for j in 0..LUT_V {
         let rho = row_radius_mm(j);
         for i in 0..LUT_U {
@@ -118,7 +137,7 @@ pub fn lut(m: &Material) -> Arc<Lut> {
     if let Some((_, l)) = cache.iter().find(|(k, _)| k == m) {
         return l.clone();
     }
-    let l = Arc::new(bake_lut(&bake::for_material(m)));
+    let l = Arc::new(bake_lut(&bake::for_material(m), m));
     cache.push((*m, l.clone()));
     l
 }
@@ -157,6 +176,8 @@ mod tests {
             slab: 500,
             kernel_events: 1_000_000,
             events: 200_000,
+            max_events: 100_000,
+            min_photons: 100,
         };
         measure(&SKIN1, budget, 2)
     }
@@ -176,7 +197,7 @@ mod tests {
                 );
             }
         }
-        assert_eq!(bake_lut(&b), bake_lut(&small_bake()));
+        assert_eq!(bake_lut(&b, &SKIN1), bake_lut(&small_bake(), &SKIN1));
     }
 
     #[test]

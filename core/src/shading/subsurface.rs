@@ -16,6 +16,9 @@ use super::{fresnel, registry::ModelParams, units};
 
 /// Rings the screen-space pass can take (`MAX_RINGS` in `sss_pass.wgsl`).
 pub const MAX_RINGS: usize = 24;
+/// Transmittances below this are packed as this (ln T stays finite: −69).
+const SLAB_FLOOR: f64 = 1e-30;
+
 /// Rows (vec4) of the packed kernel uniform.
 pub const KERNEL_ROWS: usize = 3 + MAX_RINGS;
 /// Sample directions per ring (the pass's default quality).
@@ -109,15 +112,18 @@ impl Params {
             row(self.albedo, self.eta),
             [
                 (1.0 / (std::f64::consts::PI * exit_normalisation(self.eta))) as f32,
-                f32::from(u8::from(self.slab.is_some())),
+                (1.0 / fresnel::transmittance_shader(self.eta, 1.0).max(1e-12)) as f32,
                 units::MM_PER_M as f32,
                 LUT_R0_MM as f32,
             ],
-            row(self.lift, 0.0),
+            row(self.lift, f64::from(u8::from(self.slab.is_some()))),
         ];
         rows.extend(self.oblique.iter().map(|q| row(*q, 0.0)));
         let slab = self.slab.unwrap_or([[0.0; 3]; SLAB_NODES]);
-        rows.extend(slab.iter().map(|t| row(*t, 0.0)));
+        rows.extend(
+            slab.iter()
+                .map(|t| row(t.map(|v| v.max(SLAB_FLOOR).ln()), 0.0)),
+        );
         rows.extend(self.shift.iter().map(|d| row(*d, 0.0)));
         ModelParams::from_rows(&rows)
     }
@@ -129,6 +135,7 @@ struct Packed {
     eta: f64,
     exit_norm: f64,
     translucent: bool,
+    inv_entry: f64,
     mm_per_m: f64,
     oblique: [DVec3; OBLIQUE_NODES],
     slab: [DVec3; SLAB_NODES],
@@ -142,7 +149,8 @@ fn unpack(p: &ModelParams) -> Packed {
         albedo: v(k[0]),
         eta: k[0][3],
         exit_norm: k[1][0],
-        translucent: k[1][1] > 0.5,
+        translucent: k[2][3] > 0.5,
+        inv_entry: k[1][1],
         mm_per_m: k[1][2],
         oblique: std::array::from_fn(|i| v(k[3 + i])),
         slab: std::array::from_fn(|i| v(k[3 + OBLIQUE_NODES + i])),
@@ -206,35 +214,20 @@ fn spread(p: &Packed, px: &Pixel) -> DVec3 {
     }))
 }
 
-/// f64 twin of `sss_slab`.
+/// f64 twin of `sss_slab` (the packed table holds ln T).
 pub fn slab_packed(pm: &ModelParams, t_mm: f64) -> DVec3 {
     let p = unpack(pm);
+    let exp = |v: DVec3| DVec3::new(v.x.exp(), v.y.exp(), v.z.exp());
     let x = (t_mm.max(SLAB_FIRST_MM) / SLAB_FIRST_MM).log2();
     let last_node = (SLAB_NODES - 1) as f64;
     if x >= last_node {
-        let last = p.slab[SLAB_NODES - 1].max(DVec3::splat(1e-30));
-        let prev = p.slab[SLAB_NODES - 2].max(last);
         let width = SLAB_FIRST_MM * 2f64.powf(last_node - 1.0);
-        let k = DVec3::new(
-            (prev.x / last.x).ln(),
-            (prev.y / last.y).ln(),
-            (prev.z / last.z).ln(),
-        ) / width;
+        let slope = (p.slab[SLAB_NODES - 1] - p.slab[SLAB_NODES - 2]) / width;
         let t_last = SLAB_FIRST_MM * 2f64.powf(last_node);
-        return last
-            * DVec3::new(
-                (-k.x * (t_mm - t_last)).exp(),
-                (-k.y * (t_mm - t_last)).exp(),
-                (-k.z * (t_mm - t_last)).exp(),
-            );
+        return exp(p.slab[SLAB_NODES - 1] + slope * (t_mm - t_last));
     }
     let i = (x as usize).min(SLAB_NODES - 2);
-    let ln = |v: DVec3| {
-        let v = v.max(DVec3::splat(1e-30));
-        DVec3::new(v.x.ln(), v.y.ln(), v.z.ln())
-    };
-    let m = ln(p.slab[i]).lerp(ln(p.slab[i + 1]), x - i as f64);
-    DVec3::new(m.x.exp(), m.y.exp(), m.z.exp())
+    exp(p.slab[i].lerp(p.slab[i + 1], x - i as f64))
 }
 
 /// f64 twin of `sss_split`: (local radiance, irradiance to spread, exit factor).
@@ -245,7 +238,8 @@ pub fn split(pm: &ModelParams, px: &Pixel) -> (DVec3, DVec3, f64) {
     let spread = spread(&p, px);
     let translucency = if p.translucent {
         let back = (-px.n.dot(px.l)).max(0.0);
-        e * back * oblique(&p, back) * slab_packed(pm, px.thickness() * p.mm_per_m)
+        let entry = fresnel::transmittance_shader(p.eta, back) * p.inv_entry;
+        e * back * entry * slab_packed(pm, px.thickness() * p.mm_per_m * back)
     } else {
         DVec3::ZERO
     };
