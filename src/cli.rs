@@ -6,6 +6,7 @@ use clap::{Parser, Subcommand};
 use dermis_core::shading::{Material, ShadingModel};
 
 use crate::cmd;
+use crate::cmd::args;
 
 #[derive(Parser, Debug)]
 #[command(
@@ -22,14 +23,19 @@ pub struct Cli {
 
 #[derive(clap::Args, Debug, Clone)]
 pub struct WindowArgs {
-    /// Quit after this many presented frames.
-    #[arg(long)]
+    /// Quit after this many presented frames (at least 1).
+    #[arg(long, value_parser = args::parse_frames, allow_negative_numbers = true)]
     pub frames: Option<u64>,
     /// Save the last presented frame to this PNG.
     #[arg(long)]
     pub screenshot: Option<PathBuf>,
-    /// Shading model (default: the player's saved choice in the game, `oss` in the demo).
-    #[arg(long, value_parser = parse_model)]
+    #[arg(
+        long,
+        value_parser = parse_model,
+        help = args::shading_help(
+            "Shading model (default: the player's saved choice in the game, `oss` in the demo)"
+        )
+    )]
     pub shading: Option<ShadingModel>,
     /// Initial material preset (skin1 | white-coat).
     #[arg(long, default_value = "skin1", value_parser = parse_material)]
@@ -64,8 +70,8 @@ pub enum Command {
         /// Animation clip index.
         #[arg(long, default_value_t = 0)]
         clip: usize,
-        /// Time in seconds.
-        #[arg(long, default_value_t = 0.0)]
+        /// Time in seconds (≥ 0; clamped to the clip).
+        #[arg(long, default_value = "0", value_parser = args::parse_time, allow_negative_numbers = true)]
         time: f32,
         /// Comma-separated vertex indices (default: all).
         #[arg(long, value_delimiter = ',')]
@@ -85,7 +91,7 @@ pub enum Command {
     /// Self-test: create, present to and drop N window surfaces; print GPU object counts.
     #[command(hide = true)]
     Surfaces {
-        #[arg(long, default_value_t = 50)]
+        #[arg(long, default_value_t = 50, value_parser = parse_count, allow_negative_numbers = true)]
         count: u32,
     },
     /// Benchmarks that print numbers (JSON + a table).
@@ -102,10 +108,45 @@ pub fn parse_material(s: &str) -> Result<Material, String> {
     Material::preset(s).ok_or_else(|| format!("unknown material `{s}` (known: skin1, white-coat)"))
 }
 
+/// `surfaces --count`: 1..=1000.
+fn parse_count(s: &str) -> Result<u32, String> {
+    args::int_in(s, 1, 1000)
+}
+
+/// The window's output check, before anything is loaded.
+fn check_window(w: &WindowArgs) -> Result<(), String> {
+    match &w.screenshot {
+        Some(path) => args::check_out_file(path, Some("png")),
+        None => Ok(()),
+    }
+}
+
+impl Cli {
+    /// Whether the command renders offscreen only (no window: no display server is needed).
+    pub fn is_headless_gpu(&self) -> bool {
+        matches!(
+            self.command,
+            Some(
+                Command::Play(_)
+                    | Command::Render(_)
+                    | Command::Profile(_)
+                    | Command::Bench(_)
+                    | Command::Soak(_)
+            )
+        )
+    }
+}
+
 pub fn run(cli: Cli) -> Result<(), String> {
     match cli.command {
-        None => crate::window::run_game(cli.window),
-        Some(Command::Demo(args)) => crate::window::run_demo(args),
+        None => {
+            check_window(&cli.window)?;
+            crate::window::run_game(cli.window)
+        }
+        Some(Command::Demo(args)) => {
+            check_window(&args)?;
+            crate::window::run_demo(args)
+        }
         Some(Command::Play(args)) => cmd::play::run(args),
         Some(Command::Render(args)) => cmd::render::run(args),
         Some(Command::Pose {
@@ -124,7 +165,7 @@ pub fn run(cli: Cli) -> Result<(), String> {
         Some(Command::Reference(args)) => cmd::reference::run(args),
         Some(Command::Profile(args)) => cmd::profile::run(args),
         Some(Command::Shaders(args)) => cmd::shaders::run(args),
-        Some(Command::Surfaces { count }) => cmd::surfaces::run(count.clamp(1, 1000)),
+        Some(Command::Surfaces { count }) => cmd::surfaces::run(count),
         Some(Command::Soak(args)) => cmd::soak::run(args),
     }
 }

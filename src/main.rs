@@ -46,6 +46,9 @@ fn main() -> ExitCode {
             return ExitCode::from(2);
         }
     };
+    if cli.is_headless_gpu() {
+        quiet_wayland_probe();
+    }
     match cli::run(cli) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
@@ -54,3 +57,36 @@ fn main() -> ExitCode {
         }
     }
 }
+
+/// Where `XDG_RUNTIME_DIR` is unset (containers, CI), wgpu's GL backend probing for a Wayland
+/// display makes libwayland print `error: XDG_RUNTIME_DIR is invalid or not set` (twice) even
+/// though an offscreen command needs no display. For those commands only, point it at a
+/// private, empty directory (`$TMPDIR/dermis-runtime-UID`, mode 0700, owned by this user,
+/// reused by later runs) before any GPU instance exists: the probe then finds no Wayland
+/// socket and stays quiet. Windowed commands keep the real environment. Runs on the main
+/// thread before any other thread is started.
+#[cfg(target_os = "linux")]
+fn quiet_wayland_probe() {
+    use std::os::unix::fs::{DirBuilderExt, MetadataExt};
+    if std::env::var_os("XDG_RUNTIME_DIR").is_some_and(|v| !v.is_empty()) {
+        return;
+    }
+    let Ok(uid) = std::fs::metadata("/proc/self").map(|m| m.uid()) else {
+        return;
+    };
+    let dir = std::env::temp_dir().join(format!("dermis-runtime-{uid}"));
+    match std::fs::DirBuilder::new().mode(0o700).create(&dir) {
+        Ok(()) => {}
+        Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {}
+        Err(_) => return,
+    }
+    // Only a real directory of ours that nobody else can enter (not a planted symlink).
+    let ours = std::fs::symlink_metadata(&dir)
+        .is_ok_and(|m| m.is_dir() && m.uid() == uid && m.mode() & 0o077 == 0);
+    if ours {
+        std::env::set_var("XDG_RUNTIME_DIR", &dir);
+    }
+}
+
+#[cfg(not(target_os = "linux"))]
+fn quiet_wayland_probe() {}

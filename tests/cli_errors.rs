@@ -13,10 +13,23 @@ fn dermis(args: &[&str]) -> (bool, String) {
     )
 }
 
+/// The stderr lines that count: not blank, and not libwayland's `XDG_RUNTIME_DIR` complaint
+/// (which the windowed commands may still print in containers).
+fn error_lines(stderr: &str) -> Vec<&str> {
+    stderr
+        .lines()
+        .filter(|l| !l.trim().is_empty() && !l.contains("XDG_RUNTIME_DIR"))
+        .collect()
+}
+
 fn assert_one_line_error(args: &[&str], needle: &str) {
     let (ok, stderr) = dermis(args);
     assert!(!ok, "{args:?} succeeded");
-    let lines: Vec<&str> = stderr.lines().filter(|l| !l.trim().is_empty()).collect();
+    assert!(
+        !stderr.contains("memory allocation") && !stderr.contains("stack backtrace"),
+        "{args:?}: {stderr}"
+    );
+    let lines = error_lines(&stderr);
     assert_eq!(
         lines.len(),
         1,
@@ -144,4 +157,197 @@ fn bench_shading_and_shaders_bad_input() {
     );
     assert_one_line_error(&["shaders", "--spirv", "/proc/dermis-no"], "dermis-no");
     let _ = std::fs::remove_dir_all(out);
+}
+
+fn tmp_dir(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("dermis-cli-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Numeric flags are range-checked before anything is allocated or loaded: absurd values give
+/// one line naming the flag (and, for counts below the minimum, the minimum), never an abort.
+#[test]
+fn numeric_flags_out_of_range() {
+    let dir = tmp_dir("numeric");
+    let out = dir.join("o");
+    let out = out.to_str().unwrap();
+    let png = dir.join("o.png");
+    let png = png.to_str().unwrap();
+    let cases: &[(&[&str], &str)] = &[
+        (&["soak", "--seconds", "1e12", "--out", out], "--seconds"),
+        (&["soak", "--seconds", "0", "--out", out], "--seconds"),
+        (&["soak", "--seconds", "-5", "--out", out], "--seconds"),
+        (&["soak", "--seconds", "nan", "--out", out], "--seconds"),
+        (&["soak", "--seconds", "inf", "--out", out], "--seconds"),
+        (&["soak", "--target-fps", "0", "--out", out], "--target-fps"),
+        (
+            &["soak", "--target-fps", "nan", "--out", out],
+            "--target-fps",
+        ),
+        (
+            &["play", "--autoplay", "--frames", "100000000000"],
+            "maximum",
+        ),
+        (&["play", "--autoplay", "--frames", "0"], "minimum of 121"),
+        (&["play", "--autoplay", "--frames", "120"], "minimum of 121"),
+        (&["play", "--autoplay", "--frames", "-1"], "--frames"),
+        (&["play", "--fps", "0"], "--fps"),
+        (&["play", "--fps", "NaN"], "--fps"),
+        (&["render", "--time=-1", "--out", png], "--time"),
+        (&["render", "--time", "-1", "--out", png], "--time"),
+        (&["render", "--time", "NaN", "--out", png], "--time"),
+        (&["render", "--time", "inf", "--out", png], "--time"),
+        (&["render", "--time", "1e30", "--out", png], "--time"),
+        (&["pose", "--model", "x.glb", "--time", "NaN"], "--time"),
+        (&["pose", "--model", "x.glb", "--time=-1"], "--time"),
+        (&["bench", "effects", "--rounds", "0"], "minimum of 2"),
+        (&["bench", "effects", "--rounds", "1"], "minimum of 2"),
+        (&["bench", "effects", "--frames", "0"], "minimum of 10"),
+        (
+            &["bench", "effects", "--rounds", "99999999999999999999"],
+            "maximum",
+        ),
+        (&["bench", "frame", "--rounds", "1"], "minimum of 2"),
+        (&["bench", "frame", "--rounds", "0"], "minimum of 2"),
+        (&["bench", "frame", "--frames", "9"], "minimum of 10"),
+        (&["bench", "frame", "--frames", "1e9"], "--frames"),
+        (&["--frames", "0"], "minimum of 1"),
+        (&["demo", "--frames", "100000000000"], "maximum"),
+        (&["surfaces", "--count", "0"], "minimum of 1"),
+    ];
+    for (args, needle) in cases {
+        assert_one_line_error(args, needle);
+    }
+    assert!(
+        !std::path::Path::new(out).exists(),
+        "a rejected soak made its --out"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Output paths are checked before the work starts: an unwritable place or a non-PNG image
+/// name fails at once, with nothing loaded or rendered.
+#[test]
+fn output_paths_checked_first() {
+    let dir = tmp_dir("outputs");
+    let jpg = dir.join("x.jpg");
+    let jpg = jpg.to_str().unwrap();
+    let a_dir = dir.to_str().unwrap();
+    let cases: &[(&[&str], &str)] = &[
+        (&["render", "--out", jpg], "use .png"),
+        (&["render", "--out", "/proc/dermis-no/x.png"], "dermis-no"),
+        (&["render", "--out", "/proc/x.png"], "/proc"),
+        (&["render", "--out", a_dir], "use .png"),
+        (
+            &["soak", "--seconds", "1", "--out", "/proc/dermis-no"],
+            "dermis-no",
+        ),
+        (&["play", "--screenshots", "/proc/dermis-no"], "dermis-no"),
+        (
+            &["bench", "frame", "--out", "/proc/dermis-no/b.json"],
+            "dermis-no",
+        ),
+        (&["bench", "frame", "--out", a_dir], "directory"),
+        (&["--frames", "1", "--screenshot", jpg], "use .png"),
+        (
+            &["--frames", "1", "--screenshot", "/proc/dermis-no/s.png"],
+            "dermis-no",
+        ),
+        (&["demo", "--frames", "1", "--screenshot", jpg], "use .png"),
+    ];
+    for (args, needle) in cases {
+        let start = std::time::Instant::now();
+        assert_one_line_error(args, needle);
+        assert!(
+            start.elapsed() < std::time::Duration::from_secs(20),
+            "{args:?} took {:?}",
+            start.elapsed()
+        );
+    }
+    assert!(!std::path::Path::new(jpg).exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Offscreen commands need no display: with `XDG_RUNTIME_DIR` unset (containers) they print
+/// nothing on stderr (libwayland's probe used to complain twice).
+#[test]
+fn headless_render_is_quiet_without_xdg_runtime_dir() {
+    let dir = tmp_dir("quiet");
+    let png = dir.join("r.png");
+    let out = Command::new(env!("CARGO_BIN_EXE_dermis"))
+        .args(["render", "--size", "16x16", "--out", png.to_str().unwrap()])
+        .env_remove("XDG_RUNTIME_DIR")
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    if !out.status.success() && stderr.contains("adapter") {
+        eprintln!("skipping: no GPU adapter: {stderr}");
+        return;
+    }
+    assert!(out.status.success(), "{stderr}");
+    assert!(!stderr.contains("XDG_RUNTIME_DIR"), "{stderr}");
+    assert!(png.is_file());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A settings file's bad lines are reported (file, line, what was dropped); the rest is kept.
+#[test]
+fn settings_file_bad_lines_are_reported() {
+    let dir = tmp_dir("settings");
+    let path = dir.join("settings.txt");
+    std::fs::write(&path, "shading=bogus\nbest=-5\nbest=3\n").unwrap();
+    // No display: the window fails after the settings are read.
+    let out = Command::new(env!("CARGO_BIN_EXE_dermis"))
+        .args(["--frames", "1", "--settings", path.to_str().unwrap()])
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .env_remove("WAYLAND_SOCKET")
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success(), "{stderr}");
+    let lines = error_lines(&stderr);
+    let file = path.display().to_string();
+    assert!(
+        lines
+            .iter()
+            .any(|l| l.contains(&file) && l.contains("line 1") && l.contains("bogus")),
+        "{stderr}"
+    );
+    assert!(
+        lines
+            .iter()
+            .any(|l| l.contains(&file) && l.contains("line 2") && l.contains("-5")),
+        "{stderr}"
+    );
+    assert!(!lines.iter().any(|l| l.contains("line 3")), "{stderr}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Every `--shading` help lists the model names.
+#[test]
+fn shading_help_lists_the_models() {
+    for args in [
+        &["--help"][..],
+        &["demo", "--help"],
+        &["render", "--help"],
+        &["play", "--help"],
+        &["soak", "--help"],
+        &["bench", "effects", "--help"],
+    ] {
+        let out = Command::new(env!("CARGO_BIN_EXE_dermis"))
+            .args(args)
+            .output()
+            .unwrap();
+        assert!(out.status.success(), "{args:?}");
+        let text = String::from_utf8_lossy(&out.stdout);
+        let line = text
+            .lines()
+            .find(|l| l.contains("--shading"))
+            .unwrap_or_else(|| panic!("{args:?}: no --shading in\n{text}"));
+        for name in ["ward", "oss-stable", "burley", "tabulated", "preintegrated"] {
+            assert!(line.contains(name), "{args:?}: `{name}` not in {line}");
+        }
+    }
 }

@@ -10,6 +10,7 @@ use dermis_core::shading::{material::SKIN1, ShadingModel};
 use dermis_core::still::{Shot, StillRenderer};
 use serde_json::json;
 
+use crate::cmd::args::{check_out_file, parse_bench_frames, parse_rounds};
 use crate::cmd::gputime::{frame_close_up, time_models};
 use crate::cmd::stats::{median, percentile, ratio_ci};
 
@@ -24,13 +25,15 @@ pub enum BenchKind {
     /// Time to first frame, CPU time per frame, and each model's GPU time for a close-up
     /// character pass as a ratio to `ward`.
     Frame {
-        /// Rounds of GPU timing (each round times every model once, in rotating order).
-        #[arg(long, default_value_t = 30)]
+        /// Rounds of GPU timing, at least 2 (each round times every model once, in rotating
+        /// order).
+        #[arg(long, default_value_t = 30, value_parser = parse_rounds, allow_negative_numbers = true)]
         rounds: usize,
-        /// Frames for the CPU timing.
-        #[arg(long, default_value_t = 300)]
+        /// Frames for the CPU timing (at least 10).
+        #[arg(long, default_value_t = 300, value_parser = parse_bench_frames, allow_negative_numbers = true)]
         frames: usize,
-        /// Write the JSON report here (it is also printed with --json).
+        /// Write the JSON report here (it is also printed with --json; checked before the
+        /// work starts).
         #[arg(long)]
         out: Option<PathBuf>,
         /// Print JSON instead of the table.
@@ -50,7 +53,7 @@ pub fn run(args: BenchArgs) -> Result<(), String> {
             frames,
             out,
             json,
-        } => frame(rounds.max(3), frames.max(10), out, json),
+        } => frame(rounds, frames, out, json),
         BenchKind::Shading(args) => crate::cmd::bench_shading::run(args),
         BenchKind::Effects(args) => crate::cmd::soak::bench_effects(args),
     }
@@ -62,6 +65,9 @@ fn frame(
     out: Option<PathBuf>,
     print_json: bool,
 ) -> Result<(), String> {
+    if let Some(path) = &out {
+        check_out_file(path, None)?;
+    }
     let start = Instant::now();
     let assets = SceneAssets::load(&crate::paths::assets_dir(), None).map_err(|e| e.to_string())?;
     let gpu = Gpu::headless().map_err(|e| e.to_string())?;

@@ -1,3 +1,4 @@
+pub mod args;
 pub mod bench;
 pub mod bench_shading;
 pub mod chart;

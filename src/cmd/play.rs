@@ -12,6 +12,7 @@ use serde_json::json;
 
 use crate::alloc_count::allocations;
 use crate::cli::parse_model;
+use crate::cmd::args::{check_out_dir, parse_fps, parse_play_frames, prealloc, shading_help};
 use crate::cmd::render::parse_size;
 use crate::cmd::stats::{median, percentile};
 
@@ -20,21 +21,20 @@ pub struct PlayArgs {
     /// Let the autoplay bot play (it starts runs and restarts after game over).
     #[arg(long)]
     pub autoplay: bool,
-    /// Frames to run.
-    #[arg(long, default_value_t = 600)]
+    /// Frames to run, at least 121 (120 warm-up frames plus one measured).
+    #[arg(long, default_value_t = 600, value_parser = parse_play_frames, allow_negative_numbers = true)]
     pub frames: u64,
     /// Seed of the run.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
-    /// Shading model of the character.
-    #[arg(long, value_parser = parse_model)]
+    #[arg(long, value_parser = parse_model, help = shading_help("Shading model of the character"))]
     pub shading: Option<ShadingModel>,
     /// Frame size WxH.
     #[arg(long, default_value = "1280x720", value_parser = parse_size)]
     pub size: (u32, u32),
-    /// Simulated frame rate (the game's fixed step makes results independent of it).
-    #[arg(long, default_value_t = 60.0)]
-    pub fps: f32,
+    /// Simulated frame rate, 1..=1000 (the game's fixed step makes results independent of it).
+    #[arg(long, default_value_t = 60.0, value_parser = parse_fps, allow_negative_numbers = true)]
+    pub fps: f64,
     /// Save PNGs of the main, play and game-over screens here.
     #[arg(long)]
     pub screenshots: Option<PathBuf>,
@@ -44,11 +44,11 @@ pub struct PlayArgs {
 }
 
 /// Frames before steady state (pipelines warm, pools filled).
-const WARM_UP: u64 = 120;
+pub const WARM_UP: u64 = 120;
 
 pub fn run(args: PlayArgs) -> Result<(), String> {
-    if !(1.0..=1000.0).contains(&args.fps) {
-        return Err(format!("--fps {} out of range (1..=1000)", args.fps));
+    if let Some(dir) = &args.screenshots {
+        check_out_dir(dir)?;
     }
     let assets = SceneAssets::load(&crate::paths::assets_dir(), None).map_err(|e| e.to_string())?;
     let gpu = Gpu::headless().map_err(|e| e.to_string())?;
@@ -59,21 +59,18 @@ pub fn run(args: PlayArgs) -> Result<(), String> {
     if let Some(m) = args.shading {
         session.settings.set_shading_model(m);
     }
-    if let Some(dir) = &args.screenshots {
-        std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
-    }
     let viewport = Viewport {
         width: w,
         height: h,
         scale: 1.0,
         insets: Insets::default(),
     };
-    let dt = 1.0 / args.fps;
-    let mut cpu_ms = Vec::with_capacity(args.frames as usize);
-    let mut dermis_allocs = Vec::with_capacity(args.frames as usize);
-    let mut wgpu_allocs = Vec::with_capacity(args.frames as usize);
+    let dt = (1.0 / args.fps) as f32;
+    let mut cpu_ms = Vec::with_capacity(prealloc(args.frames));
+    let mut dermis_allocs = Vec::with_capacity(prealloc(args.frames));
+    let mut wgpu_allocs = Vec::with_capacity(prealloc(args.frames));
     let mut draw_calls = 0;
-    let mut uploads = Vec::with_capacity(args.frames as usize);
+    let mut uploads = Vec::with_capacity(prealloc(args.frames));
     let mut max_ticks = 0;
     let mut live_warm = None;
     let mut live_changes = 0u64;
@@ -85,7 +82,7 @@ pub fn run(args: PlayArgs) -> Result<(), String> {
         let info = session.update(dt, &assets.character, viewport);
         let a1 = allocations();
         gg.upload(&gpu.queue, &mut session, &assets.character);
-        uploads.push(session.uploads as f64);
+        let frame_uploads = session.uploads as f64;
         let mut encoder = gpu
             .device
             .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
@@ -109,6 +106,7 @@ pub fn run(args: PlayArgs) -> Result<(), String> {
         gpu.queue.submit([encoder.finish()]);
         let a2 = allocations();
         cpu_ms.push(t0.elapsed().as_secs_f64() * 1e3);
+        uploads.push(frame_uploads);
         gpu.wait();
         if shoot {
             let dir = args.screenshots.as_ref().expect("checked above");

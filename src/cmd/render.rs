@@ -9,11 +9,16 @@ use dermis_core::still::{Shot, StillRenderer};
 use glam::Vec3;
 
 use crate::cli::{parse_material, parse_model};
+use crate::cmd::args::{check_out_file, parse_time, shading_help};
 
 #[derive(clap::Args, Debug)]
 pub struct RenderArgs {
-    /// Shading model of the character.
-    #[arg(long, default_value = "oss", value_parser = parse_model)]
+    #[arg(
+        long,
+        default_value = "oss",
+        value_parser = parse_model,
+        help = shading_help("Shading model of the character")
+    )]
     pub shading: ShadingModel,
     /// Material preset (skin1 | white-coat).
     #[arg(long, default_value = "skin1", value_parser = parse_material)]
@@ -24,8 +29,8 @@ pub struct RenderArgs {
     /// Animation clip index.
     #[arg(long, default_value_t = 0)]
     pub clip: usize,
-    /// Time in the clip (seconds).
-    #[arg(long, default_value_t = 0.0)]
+    /// Time in the clip (seconds, ≥ 0; clamped to the clip).
+    #[arg(long, default_value = "0", value_parser = parse_time, allow_negative_numbers = true)]
     pub time: f32,
     /// Image size, WxH.
     #[arg(long, default_value = "640x360", value_parser = parse_size)]
@@ -36,7 +41,7 @@ pub struct RenderArgs {
     /// Leave out the props (character only).
     #[arg(long)]
     pub no_props: bool,
-    /// Output PNG.
+    /// Output PNG (checked before rendering: writable, `.png`).
     #[arg(long)]
     pub out: PathBuf,
 }
@@ -77,6 +82,7 @@ pub fn parse_vec3(s: &str) -> Result<Vec3, String> {
 }
 
 pub fn run(args: RenderArgs) -> Result<(), String> {
+    check_out_file(&args.out, Some("png"))?;
     let assets = SceneAssets::load(&crate::paths::assets_dir(), args.model.as_deref())
         .map_err(|e| e.to_string())?;
     let gpu = Gpu::headless().map_err(|e| e.to_string())?;

@@ -58,6 +58,10 @@ use serde_json::{json, Value};
 
 use crate::alloc_count::allocations;
 use crate::cli::parse_model;
+use crate::cmd::args::{
+    check_out_dir, parse_bench_frames, parse_fps, parse_rounds, parse_seconds, prealloc,
+    shading_help, BENCH_FRAMES, ROUNDS,
+};
 use crate::cmd::render::parse_size;
 use crate::cmd::stats::{percentile, ratio_ci};
 use dermis_core::soak::{
@@ -67,17 +71,23 @@ use dermis_core::soak::{
 
 #[derive(clap::Args, Debug, Clone)]
 pub struct SoakArgs {
-    /// Wall-clock seconds to play.
-    #[arg(long, default_value_t = 60.0)]
+    /// Wall-clock seconds to play (greater than 0, at most 86400).
+    #[arg(long, default_value_t = 60.0, value_parser = parse_seconds, allow_negative_numbers = true)]
     pub seconds: f64,
-    /// The player's chosen shading model: tier 0 (see `governor::Tiers::for_choice`).
-    #[arg(long, default_value = "oss", value_parser = parse_model)]
+    #[arg(
+        long,
+        default_value = "oss",
+        value_parser = parse_model,
+        help = shading_help(
+            "The player's chosen shading model: tier 0 (see `governor::Tiers::for_choice`)"
+        )
+    )]
     pub shading: ShadingModel,
     /// Frame size WxH.
     #[arg(long, default_value = "1280x720", value_parser = parse_size)]
     pub size: (u32, u32),
-    /// Target frame rate (the frame budget and the simulated vsync).
-    #[arg(long, default_value_t = 60.0)]
+    /// Target frame rate (the frame budget and the simulated vsync), 1..=1000.
+    #[arg(long, default_value_t = 60.0, value_parser = parse_fps, allow_negative_numbers = true)]
     pub target_fps: f64,
     /// Submit as fast as possible (measures headroom) instead of pacing to the target.
     #[arg(long)]
@@ -366,16 +376,8 @@ fn sleep_until(deadline: Instant) {
 }
 
 pub fn run(args: SoakArgs) -> Result<(), String> {
-    if !(args.seconds > 0.0 && args.seconds.is_finite()) {
-        return Err(format!("--seconds {} must be > 0", args.seconds));
-    }
-    if !(1.0..=1000.0).contains(&args.target_fps) {
-        return Err(format!(
-            "--target-fps {} out of range (1..=1000)",
-            args.target_fps
-        ));
-    }
-    std::fs::create_dir_all(&args.out).map_err(|e| format!("{}: {e}", args.out.display()))?;
+    // `--seconds` and `--target-fps` are range-checked by their parsers.
+    check_out_dir(&args.out)?;
     let assets = SceneAssets::load(&crate::paths::assets_dir(), None).map_err(|e| e.to_string())?;
     let gpu = Gpu::headless().map_err(|e| e.to_string())?;
     let (w, h) = args.size;
@@ -434,8 +436,8 @@ pub fn run(args: SoakArgs) -> Result<(), String> {
             .map_err(|e| e.to_string())?,
     );
 
-    let expect_frames = (args.seconds * args.target_fps * 1.1) as usize + 64;
-    let mut frames: Vec<FrameRec> = Vec::with_capacity(expect_frames);
+    let expect_frames = (args.seconds * args.target_fps * 1.1) as u64 + 64;
+    let mut frames: Vec<FrameRec> = Vec::with_capacity(prealloc(expect_frames));
     let mut in_flight: VecDeque<wgpu::SubmissionIndex> = VecDeque::with_capacity(4);
     let mut sent = 0usize;
     let mut second_start = 0usize;
@@ -752,14 +754,18 @@ fn chart_png(
 /// `dermis bench effects` arguments.
 #[derive(clap::Args, Debug)]
 pub struct EffectsArgs {
-    /// Rounds; each round plays `frames` frames with scheduling on and `frames` with it off.
-    #[arg(long, default_value_t = 10)]
+    /// Rounds (at least 2); each round plays `frames` frames in each mode, in rotating order.
+    #[arg(long, default_value_t = 10, value_parser = parse_rounds, allow_negative_numbers = true)]
     pub rounds: usize,
-    /// Frames per half-round.
-    #[arg(long, default_value_t = 60)]
+    /// Frames per mode per round (at least 10).
+    #[arg(long, default_value_t = 60, value_parser = parse_bench_frames, allow_negative_numbers = true)]
     pub frames: usize,
-    /// The player's shading model (tier 0).
-    #[arg(long, default_value = "oss", value_parser = parse_model)]
+    #[arg(
+        long,
+        default_value = "oss",
+        value_parser = parse_model,
+        help = shading_help("The player's shading model (tier 0)")
+    )]
     pub shading: ShadingModel,
     /// Frame size WxH.
     #[arg(long, default_value = "1280x720", value_parser = parse_size)]
@@ -774,6 +780,14 @@ pub struct EffectsArgs {
 /// (off: always the chosen model; coverage + light; coverage + light + frame-time governor),
 /// each frame's GPU pass timed and waited for (so blocks do not overlap on the GPU).
 pub fn bench_effects(args: EffectsArgs) -> Result<(), String> {
+    if !(ROUNDS.0..=ROUNDS.1).contains(&args.rounds)
+        || !(BENCH_FRAMES.0..=BENCH_FRAMES.1).contains(&args.frames)
+    {
+        return Err(format!(
+            "--rounds {} / --frames {} out of range ({}..={} / {}..={})",
+            args.rounds, args.frames, ROUNDS.0, ROUNDS.1, BENCH_FRAMES.0, BENCH_FRAMES.1
+        ));
+    }
     let assets = SceneAssets::load(&crate::paths::assets_dir(), None).map_err(|e| e.to_string())?;
     let gpu = Gpu::headless().map_err(|e| e.to_string())?;
     let (w, h) = args.size;
@@ -849,8 +863,7 @@ pub fn bench_effects(args: EffectsArgs) -> Result<(), String> {
     for k in 0..3 {
         play(k, 30, false);
     }
-    let rounds = args.rounds.max(2);
-    let n = args.frames.max(10);
+    let (rounds, n) = (args.rounds, args.frames);
     for r in 0..rounds {
         for j in 0..3 {
             let k = (j + r) % 3;

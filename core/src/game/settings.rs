@@ -42,36 +42,58 @@ impl Settings {
     /// Parses `to_text` output. Never fails: unknown keys, malformed lines, unknown model
     /// names and out-of-range numbers are ignored (the defaults stay).
     pub fn from_text(text: &str) -> Self {
-        let mut s = Self::default();
-        for line in text.lines() {
-            let line = line.trim();
-            if line.starts_with('#') {
-                continue;
-            }
-            let Some((key, value)) = line.split_once('=') else {
-                continue;
-            };
-            match key.trim() {
-                "shading" => {
-                    if let Some(m) = ShadingModel::from_name(value.trim()) {
-                        s.set_shading_model(m);
-                    }
-                }
-                "best" => {
-                    if let Ok(b) = value.trim().parse::<u32>() {
-                        s.best = b;
-                    }
-                }
-                _ => {}
-            }
-        }
-        s
+        Self::parse(text).0
     }
 
-    /// Reads `path`; a missing or unreadable file gives the defaults.
+    /// Parses `to_text` output like [`Settings::from_text`], and also says what was dropped:
+    /// one `line N: …` message per ignored line (blank lines and `#` comments are not).
+    pub fn parse(text: &str) -> (Self, Vec<String>) {
+        let mut s = Self::default();
+        let mut dropped = Vec::new();
+        for (i, raw) in text.lines().enumerate() {
+            let n = i + 1;
+            let line = raw.trim();
+            if line.is_empty() || line.starts_with('#') {
+                continue;
+            }
+            let shown: String = line.chars().take(60).collect();
+            let Some((key, value)) = line.split_once('=') else {
+                dropped.push(format!("line {n}: `{shown}` ignored (not key=value)"));
+                continue;
+            };
+            let value = value.trim();
+            match key.trim() {
+                "shading" => match ShadingModel::from_name(value) {
+                    Some(m) => s.set_shading_model(m),
+                    None => dropped.push(format!(
+                        "line {n}: `{shown}` ignored (unknown shading model; known: {})",
+                        ShadingModel::names()
+                    )),
+                },
+                "best" => match value.parse::<u32>() {
+                    Ok(b) => s.best = b,
+                    Err(_) => dropped.push(format!(
+                        "line {n}: `{shown}` ignored (best must be a whole number in 0..={})",
+                        u32::MAX
+                    )),
+                },
+                _ => dropped.push(format!("line {n}: `{shown}` ignored (unknown key)")),
+            }
+        }
+        (s, dropped)
+    }
+
+    /// Reads `path`; a missing or unreadable file gives the defaults. Each ignored line is
+    /// logged as a warning naming the file and the line.
     pub fn load(path: &Path) -> Self {
         match std::fs::read(path) {
-            Ok(bytes) => Self::from_text(&String::from_utf8_lossy(&bytes)),
+            Ok(bytes) => {
+                let (s, dropped) = Self::parse(&String::from_utf8_lossy(&bytes));
+                for d in dropped {
+                    log::warn!("settings {}: {d}", path.display());
+                }
+                s
+            }
             Err(_) => Self::default(),
         }
     }
@@ -93,5 +115,26 @@ impl Settings {
         std::fs::rename(&tmp, path).inspect_err(|_| {
             let _ = std::fs::remove_file(&tmp);
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parse_reports_what_it_drops() {
+        let (s, dropped) =
+            Settings::parse("# c\n\nshading=bogus\nbest=-5\nbest=7\njunk\nextra=1\nshading=oss");
+        assert_eq!((s.best, s.shading.as_str()), (7, "oss"));
+        assert_eq!(dropped.len(), 4, "{dropped:?}");
+        assert!(
+            dropped[0].starts_with("line 3: `shading=bogus`"),
+            "{dropped:?}"
+        );
+        assert!(dropped[1].starts_with("line 4: `best=-5`"), "{dropped:?}");
+        assert!(dropped[2].starts_with("line 6: `junk`"), "{dropped:?}");
+        assert!(dropped[3].contains("unknown key"), "{dropped:?}");
+        assert!(Settings::parse(&Settings::default().to_text()).1.is_empty());
     }
 }
