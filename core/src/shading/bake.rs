@@ -5,17 +5,18 @@
 //!   power leaving through each ring [r_k, r_{k+1}) per unit incident power (specular
 //!   excluded): `mass[k]`. The rings are geometric from [`R_FIRST_MM`] to a radius that holds
 //!   the material's diffusion tail, plus the inner disk [0, r_1). Ring masses are exact
-//!   integrals of the profile (the Monte Carlo bins them directly), so a ring quadrature that
-//!   places each mass at one radius conserves energy exactly.
+//!   integrals of the profile (the Monte Carlo bins them directly), so the screen-space pass,
+//!   which spends each ring's mass at radii drawn inside it, conserves energy exactly.
 //! - **Oblique incidence**: q(μ) = R(μ)/R(1), the diffuse reflectance of a collimated beam at
 //!   incidence cosine μ relative to normal incidence (both per unit incident power, so q
 //!   carries the Fresnel transmission at entry and the shallower deposition of oblique light:
-//!   at low albedo R(μ) *rises* toward grazing before Fresnel takes it to 0), at μ = k/6.
+//!   at low albedo R(μ) *rises* toward grazing before Fresnel takes it to 0), at μ = (k/6)².
 //! - **Forward shift**: δ(μ), the mean forward displacement between entry and exit of that
 //!   beam (the first moment of its line-spread function): obliquely entering light travels on
 //!   before it leaves, so a point light's exitance is pushed outward.
 //! - **Translucency**: the diffuse transmittance (unscattered part excluded) of a slab lit
-//!   at normal incidence from behind, at thicknesses 0.25·2^k mm.
+//!   at normal incidence from behind, at thicknesses 0.25·2^k mm; past a diffusion length,
+//!   where too few photons get through to measure it, diffusion's e^{−σ_tr d} carries on.
 //!
 //! Seeds are fixed and differ from every reference set's, photons in fixed batches, so a bake
 //! is deterministic and independent of the thread count.
