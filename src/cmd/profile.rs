@@ -6,7 +6,7 @@
 //! in mm⁻² per unit source power (the Monte Carlo's units, `tools/reference/*.json`).
 
 use dermis_core::probe::Probe;
-use dermis_core::reference::Scene;
+use dermis_core::reference::{self, Scene};
 use dermis_core::render::Gpu;
 use dermis_core::shading::{Material, ShadingModel};
 use serde_json::{json, Map, Value};
@@ -148,40 +148,10 @@ pub fn default_edges(h_mm: f64) -> Vec<f64> {
     // The probe's view reaches 1.1 r_max + 2 mm from the centre over its pixels.
     let pixel = 2.0 * (1.1 * r_max + 2.0) / dermis_core::probe::PIXELS as f64;
     let first = (0.25 * h_mm).max(2.0 * pixel);
-    let n = DEFAULT_BINS as f64;
-    let width = |a: f64| r_max * (a / n).sinh() / a.sinh();
-    let a = if first >= r_max / n {
-        0.0
-    } else {
-        let (mut lo, mut hi) = (1e-6, 50.0);
-        for _ in 0..200 {
-            let mid = 0.5 * (lo + hi);
-            if width(mid) > first {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-        }
-        0.5 * (lo + hi)
-    };
-    (0..=DEFAULT_BINS)
-        .map(|k| {
-            let x = if a == 0.0 {
-                r_max * k as f64 / n
-            } else {
-                r_max * (a * k as f64 / n).sinh() / a.sinh()
-            };
-            round3(x)
-        })
+    reference::sinh_spaced(r_max, DEFAULT_BINS, first)
+        .into_iter()
+        .map(reference::round_edge)
         .collect()
-}
-
-/// Rounds to 3 significant digits (readable edges).
-fn round3(x: f64) -> f64 {
-    if x == 0.0 {
-        return 0.0;
-    }
-    format!("{x:.2e}").parse().unwrap_or(x)
 }
 
 /// A model's profile: the exitance per annulus.

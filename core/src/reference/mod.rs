@@ -228,7 +228,7 @@ fn symmetric_geometric(x0: f64, x1: f64, n: usize) -> Vec<f64> {
 
 /// `n + 1` edges from 0 to `r_max`, r_k = r_max sinh(a k/n)/sinh(a), with `a` chosen so the
 /// first bin is `first` wide (equal widths, a = 0, if `first` ≥ r_max/n).
-fn sinh_spaced(r_max: f64, n: usize, first: f64) -> Vec<f64> {
+pub fn sinh_spaced(r_max: f64, n: usize, first: f64) -> Vec<f64> {
     let nf = n as f64;
     let width = |a: f64| {
         if a < 1e-9 {
@@ -264,7 +264,8 @@ fn sinh_spaced(r_max: f64, n: usize, first: f64) -> Vec<f64> {
 }
 
 /// Rounds a bin edge to 3 significant digits (the files stay readable).
-fn round_edge(x: f64) -> f64 {
+/// An edge rounded to 3 significant digits (readable tables).
+pub fn round_edge(x: f64) -> f64 {
     round_sig(x, 3)
 }
 

@@ -250,15 +250,7 @@ impl Renderer {
         let mut stats = RenderStats::default();
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: None,
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: &targets.msaa,
-                depth_slice: None,
-                resolve_target: Some(output),
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(self.clear),
-                    store: wgpu::StoreOp::Discard,
-                },
-            })],
+            color_attachments: &[self.output_attachment(targets, output)],
             depth_stencil_attachment: Some(depth_attachment(targets)),
             timestamp_writes: timer.map(|t| t.writes()),
             occlusion_query_set: None,
@@ -271,6 +263,23 @@ impl Renderer {
             stats.draw_calls += ui.draw(&mut pass);
         }
         stats
+    }
+
+    /// The frame's last pass draws into the MSAA target, cleared, and resolves into `output`.
+    fn output_attachment<'a>(
+        &self,
+        targets: &'a Targets,
+        output: &'a wgpu::TextureView,
+    ) -> Option<wgpu::RenderPassColorAttachment<'a>> {
+        Some(wgpu::RenderPassColorAttachment {
+            view: &targets.msaa,
+            depth_slice: None,
+            resolve_target: Some(output),
+            ops: wgpu::Operations {
+                load: wgpu::LoadOp::Clear(self.clear),
+                store: wgpu::StoreOp::Discard,
+            },
+        })
     }
 
     /// The character and props of `draw` into the open pass.
@@ -353,15 +362,7 @@ impl Renderer {
         }
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("subsurface"),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: &targets.msaa,
-                depth_slice: None,
-                resolve_target: Some(output),
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(self.clear),
-                    store: wgpu::StoreOp::Discard,
-                },
-            })],
+            color_attachments: &[self.output_attachment(targets, output)],
             depth_stencil_attachment: Some(depth_attachment(targets)),
             timestamp_writes: timer.map(|t| t.end_writes()),
             occlusion_query_set: None,
