@@ -91,6 +91,19 @@ fn skinned_model(name: &str, vertices: Vec<Vertex>, indices: Vec<u32>, half: f32
     }
 }
 
+/// Two triangles per cell of a (cols + 1) × (rows + 1) vertex grid, row-major.
+fn grid_indices(cols: u32, rows: u32) -> Vec<u32> {
+    let mut indices = Vec::with_capacity((cols * rows * 6) as usize);
+    for j in 0..rows {
+        for i in 0..cols {
+            let a = j * (cols + 1) + i;
+            let (b, c, d) = (a + 1, a + cols + 1, a + cols + 2);
+            indices.extend_from_slice(&[a, c, b, b, c, d]);
+        }
+    }
+    indices
+}
+
 /// A plane of half-size `half_m` metres in x–z, facing +y, skinned to one joint.
 pub fn plane_model(half_m: f32, thickness_m: f32) -> Model {
     let n = 32u32;
@@ -102,15 +115,7 @@ pub fn plane_model(half_m: f32, thickness_m: f32) -> Model {
             vertices.push(vertex(p, Vec3::Y, thickness_m));
         }
     }
-    let mut indices = Vec::new();
-    for j in 0..n {
-        for i in 0..n {
-            let a = j * (n + 1) + i;
-            let (b, c, d) = (a + 1, a + n + 1, a + n + 2);
-            indices.extend_from_slice(&[a, c, b, b, c, d]);
-        }
-    }
-    skinned_model("flat medium", vertices, indices, half_m)
+    skinned_model("flat medium", vertices, grid_indices(n, n), half_m)
 }
 
 /// A UV sphere of radius `r_m` metres at the origin.
@@ -129,15 +134,7 @@ pub fn sphere_model(r_m: f32, thickness_m: f32) -> Model {
             vertices.push(vertex(n * r_m, n, thickness_m));
         }
     }
-    let mut indices = Vec::new();
-    for j in 0..rings {
-        for i in 0..segments {
-            let a = j * (segments + 1) + i;
-            let (b, c, d) = (a + 1, a + segments + 1, a + segments + 2);
-            indices.extend_from_slice(&[a, c, b, b, c, d]);
-        }
-    }
-    skinned_model("sphere", vertices, indices, r_m)
+    skinned_model("sphere", vertices, grid_indices(segments, rings), r_m)
 }
 
 /// The renderer and target the scenes are drawn with, reused across scenes and models.

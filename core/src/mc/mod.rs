@@ -122,6 +122,24 @@ impl Medium {
     pub fn sigma_t(&self) -> f64 {
         self.sigma_a + self.sigma_s()
     }
+    /// (σ_s, σ_t) after checking the medium can be walked: σ_t positive and finite, no
+    /// negative coefficient, |g| < 1, η > 0 (panics otherwise, naming what is wrong).
+    pub(crate) fn checked_sigmas(&self) -> (f64, f64) {
+        let sigma_s = self.sigma_s();
+        let sigma_t = self.sigma_a + sigma_s;
+        assert!(
+            sigma_t > 0.0 && sigma_t.is_finite(),
+            "mc: σ_t must be positive and finite"
+        );
+        assert!(
+            self.sigma_a >= 0.0 && sigma_s >= 0.0,
+            "mc: negative coefficient"
+        );
+        assert!(self.g > -1.0 && self.g < 1.0, "mc: g must be in (-1, 1)");
+        assert!(self.eta > 0.0, "mc: η must be positive");
+        (sigma_s, sigma_t)
+    }
+
     /// Reduced albedo α' = σ'_s / (σ_a + σ'_s).
     pub fn reduced_albedo(&self) -> f64 {
         self.sigma_s_prime / (self.sigma_a + self.sigma_s_prime)

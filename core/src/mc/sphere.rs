@@ -197,18 +197,7 @@ pub fn sphere_with(
     seed: u64,
     threads: usize,
 ) -> SphereResults {
-    let sigma_s = m.sigma_s();
-    let sigma_t = m.sigma_a + sigma_s;
-    assert!(
-        sigma_t > 0.0 && sigma_t.is_finite(),
-        "mc: σ_t must be positive and finite"
-    );
-    assert!(
-        m.sigma_a >= 0.0 && sigma_s >= 0.0,
-        "mc: negative coefficient"
-    );
-    assert!(m.g > -1.0 && m.g < 1.0, "mc: g must be in (-1, 1)");
-    assert!(m.eta > 0.0, "mc: η must be positive");
+    let (sigma_s, sigma_t) = m.checked_sigmas();
     assert!(
         radius > 0.0 && radius.is_finite(),
         "mc: sphere radius must be positive"

@@ -46,18 +46,7 @@ impl<'a> Walker<'a> {
         cone_mu: f64,
         max_events: u64,
     ) -> Self {
-        let sigma_s = m.sigma_s();
-        let sigma_t = m.sigma_a + sigma_s;
-        assert!(
-            sigma_t > 0.0 && sigma_t.is_finite(),
-            "mc: σ_t must be positive and finite"
-        );
-        assert!(
-            m.sigma_a >= 0.0 && sigma_s >= 0.0,
-            "mc: negative coefficient"
-        );
-        assert!(m.g > -1.0 && m.g < 1.0, "mc: g must be in (-1, 1)");
-        assert!(m.eta > 0.0, "mc: η must be positive");
+        let (sigma_s, sigma_t) = m.checked_sigmas();
         let d = match geom {
             Geometry::SemiInfinite => f64::INFINITY,
             Geometry::Slab { d } => {
