@@ -1,5 +1,7 @@
 // The skinned character: vertex skinning + the selected shading model (`shading_model` is an
-// alias bound per pipeline to ward / dipole / oss / ...).
+// alias bound per pipeline to ward / dipole / oss / ...) on the skin, and the cloth BRDF
+// (common.wgsl) elsewhere: the base colour's alpha is the skin mask (1: skin; the loader sets
+// it to 1 for materials that declare no mask), blended across its edges.
 #import common
 #import skinning
 #import shading_model
@@ -40,8 +42,7 @@ fn vs_main(v: VertexIn) -> VertexOut {
     return out;
 }
 
-fn surface_at(in: VertexOut) -> Surface {
-    let albedo = textureSample(base_color, base_sampler, in.uv).rgb;
+fn surface_at(in: VertexOut, albedo: vec3<f32>) -> Surface {
     var s = make_surface(in.world_pos, in.normal, in.tangent, albedo, in.thickness);
     // Curvature radius from screen-space derivatives: how far the surface moves per unit of
     // normal change across a pixel (large on flat parts, small on fingers and ears).
@@ -61,21 +62,45 @@ struct SplitOut {
     @location(1) spread: vec4<f32>,
 };
 
+// Cloth writes exit 0 and a zero pixel size: the pass leaves it as it is and its
+// neighbours take it for "not skin"; a partly skin pixel spreads the irradiance its skin part
+// received and takes its share of what comes back.
 @fragment
 fn fs_main(in: VertexOut) -> SplitOut {
-    let s = surface_at(in);
-    let p = shade_split(s);
+    let tex = textureSample(base_color, base_sampler, in.uv);
+    let s = surface_at(in, tex.rgb);
+    let skin = tex.a;
     let dx = dpdx(in.world_pos);
     let dy = dpdy(in.world_pos);
     let px = 0.5 * (length(dx - s.v * dot(s.v, dx)) + length(dy - s.v * dot(s.v, dy)));
+    // Cloth first: the skin model then runs with only the cloth's colour left to carry.
     var out: SplitOut;
-    out.colour = vec4<f32>(p.local, p.exit);
-    out.spread = vec4<f32>(p.spread, max(px * 1000.0, 1e-6));
+    out.colour = vec4<f32>(0.0);
+    out.spread = vec4<f32>(0.0);
+    if (skin < 1.0) {
+        out.colour = vec4<f32>(cloth_radiance(s) * (1.0 - skin), 0.0);
+    }
+    if (skin > 0.0) {
+        let p = shade_split(s);
+        out.colour = vec4<f32>(out.colour.rgb + p.local * skin, p.exit * skin);
+        out.spread = vec4<f32>(p.spread, max(px * 1000.0, 1e-6));
+    }
     return out;
 }
 #else
 @fragment
 fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
-    return finish(shade(surface_at(in)));
+    let tex = textureSample(base_color, base_sampler, in.uv);
+    let s = surface_at(in, tex.rgb);
+    let skin = tex.a;
+    // Cloth first: the skin model then runs with only the cloth's colour left to carry.
+    var c = vec3<f32>(0.0);
+    if (skin < 1.0) {
+        c = cloth_radiance(s) * (1.0 - skin);
+    }
+    if (skin > 0.0) {
+        c = c + shade(s) * skin;
+    }
+    return finish(c);
 }
 #endif

@@ -87,6 +87,20 @@ fn irradiance(s: Surface) -> vec3<f32> {
     return s.light / (s.light_dist * s.light_dist);
 }
 
+// Cloth (and whatever else is not skin: hair, eyes), the same under every shading model: a
+// wrapped Lambert lobe (light wraps past the terminator as it does through fibres; the
+// (1 + w)² keeps its integral that of Lambert) brightened toward grazing views by a sheen
+// tinted by the fibres' colour (velvet-like), on the textured albedo.
+const CLOTH_WRAP: f32 = 0.3;
+const CLOTH_SHEEN: f32 = 0.5;
+
+fn cloth_radiance(s: Surface) -> vec3<f32> {
+    let wrapped = max(dot(s.n, s.l) + CLOTH_WRAP, 0.0) / ((1.0 + CLOTH_WRAP) * (1.0 + CLOTH_WRAP));
+    let g = 1.0 - max(dot(s.n, s.v), 0.0);
+    let brdf = INV_PI + CLOTH_SHEEN * g * g * g;
+    return s.albedo * (frame.ambient.rgb + irradiance(s) * wrapped * brdf);
+}
+
 // Narkowicz's fit of the ACES filmic curve.
 fn tonemap(x: vec3<f32>) -> vec3<f32> {
     let c = max(x, vec3<f32>(0.0));

@@ -1,7 +1,7 @@
-// Mobile tier: pre-integrated skin (Penner & Borshukov 2011). The material's measured
-// diffusion profile is integrated once over spheres of every radius under a directional light
-// (core/src/shading/preintegrated.rs) into a LUT over (n·l, curvature); per pixel one fetch,
-// no pass. A point light's irradiance is blurred by lifting the light by the
+// Mobile tier: pre-integrated skin (Penner & Borshukov 2011). The response of spheres of
+// every radius under a directional light, measured once per material by the Monte Carlo
+// sphere walker (core/src/shading/preintegrated.rs), in a LUT over (n·l, curvature); per pixel
+// one fetch, no pass. A point light's irradiance is blurred by lifting the light by the
 // kernel's Poisson height (the Poisson kernel is its own semigroup: blurring the irradiance of
 // a light at height h with a Poisson kernel of height s gives the light at height h + s).
 #import common
@@ -37,14 +37,19 @@ fn shade(s: Surface) -> vec3<f32> {
     let mean = dot(lift, vec3<f32>(1.0 / 3.0));
     let mu = clamp((h + mean) * inverseSqrt(max(d * d + 2.0 * h * mean + mean * mean, 1e-12)), -1.0, 1.0);
     // The sphere response M/E_beam: u = (n·l + 1)/2.
-    let m = textureSampleLevel(lut, lut_sampler, vec2<f32>(0.5 * (mu + 1.0), v_tex), 0.0).rgb;
+    // The rows hold log2 M (an exponential fall-off past the terminator interpolates exactly).
+    let m = exp2(textureSampleLevel(lut, lut_sampler, vec2<f32>(0.5 * (mu + 1.0), v_tex), 0.0).rgb);
     let response = m * (d * d) / d2;
-    // Translucency (subsurface.wgsl's, with its Fresnel and slab tables read from the LUT).
+    // Translucency (subsurface.wgsl's, with its Fresnel and slab tables read from the LUT)
+    // beyond what the sphere rows already carry: they hold the light that crosses a ball of
+    // radius ρ, whose chord along the light here is 2ρ·back, so only a part thinner than its
+    // curvature implies (an ear, a finger) adds the difference of the two slabs.
     let back = max(-dot(s.n, s.l), 0.0);
     let path = s.thickness * model.misc.z * back;
     let entry = lut_row(back, CURVATURE_ROWS).g;
     let slab = lut_row(log2(max(path, 0.25) / 0.25) / 9.0, CURVATURE_ROWS + 1.0).rgb;
-    let through = back * entry * slab;
+    let ball = lut_row(log2(max(2.0 * rho_mm * back, 0.25) / 0.25) / 9.0, CURVATURE_ROWS + 1.0).rgb;
+    let through = back * entry * max(slab - ball, vec3<f32>(0.0));
     let ambient = PI * frame.ambient.rgb * model.albedo.rgb;
     return exit * (ambient + irradiance(s) * (response + through));
 }

@@ -1,4 +1,5 @@
-// Baseline for cost ratios: the texture colour, no lighting.
+// Baseline for cost ratios: the texture colour on the skin, no lighting (the cloth, as under
+// every model, gets the cloth BRDF of common.wgsl).
 #import common
 
 struct ModelParams {

@@ -21,6 +21,10 @@ pub struct Cli {
     pub window: WindowArgs,
 }
 
+/// The shading model `render` and `demo` use when none is given: the measured, spatial one
+/// (the best-looking accurate model; `oss` as printed is one `--shading oss` away).
+pub const DEFAULT_SHADING: &str = "tabulated";
+
 #[derive(clap::Args, Debug, Clone)]
 pub struct WindowArgs {
     /// Quit after this many presented frames (at least 1).
@@ -32,9 +36,9 @@ pub struct WindowArgs {
     #[arg(
         long,
         value_parser = parse_model,
-        help = args::shading_help(
-            "Shading model (default: the player's saved choice in the game, `oss` in the demo)"
-        )
+        help = args::shading_help(&format!(
+            "Shading model (default: the player's saved choice in the game, `{DEFAULT_SHADING}` in the demo)"
+        ))
     )]
     pub shading: Option<ShadingModel>,
     /// Initial material preset (skin1 | white-coat).
@@ -84,6 +88,8 @@ pub enum Command {
     Sss(cmd::sss::SssArgs),
     /// Generate the path-traced reference data set (tools/reference/<material>.json).
     Reference(cmd::reference::ReferenceArgs),
+    /// Bake the pre-integrated skin LUTs the core ships (assets/sss/<material>-eta<η>.lut).
+    Lut(cmd::lut::LutArgs),
     /// Radial exitance profile M(r) of a flat medium under a point light, per shading model.
     Profile(cmd::profile::ProfileArgs),
     /// Write each composed shader as SPIR-V (NAME.vert.spv / NAME.frag.spv) into a directory.
@@ -143,8 +149,11 @@ pub fn run(cli: Cli) -> Result<(), String> {
             check_window(&cli.window)?;
             crate::window::run_game(cli.window)
         }
-        Some(Command::Demo(args)) => {
+        Some(Command::Demo(mut args)) => {
             check_window(&args)?;
+            if args.shading.is_none() {
+                args.shading = Some(parse_model(DEFAULT_SHADING)?);
+            }
             crate::window::run_demo(args)
         }
         Some(Command::Play(args)) => cmd::play::run(args),
@@ -163,6 +172,7 @@ pub fn run(cli: Cli) -> Result<(), String> {
         Some(Command::Bench(args)) => cmd::bench::run(args),
         Some(Command::Sss(args)) => cmd::sss::run(args),
         Some(Command::Reference(args)) => cmd::reference::run(args),
+        Some(Command::Lut(args)) => cmd::lut::run(args),
         Some(Command::Profile(args)) => cmd::profile::run(args),
         Some(Command::Shaders(args)) => cmd::shaders::run(args),
         Some(Command::Surfaces { count }) => cmd::surfaces::run(count),

@@ -4,14 +4,14 @@
 use std::path::Path;
 
 use dermis_core::anim::Pose;
-use dermis_core::camera::{Capsule, FollowCamera};
-use dermis_core::render::{FrameView, Gpu, Light, Renderer};
+use dermis_core::camera::FollowCamera;
+use dermis_core::render::{
+    DrawSet, FrameOutput, FrameView, FrameWork, Gpu, Light, RenderStats, Renderer, CHARACTER,
+    EXPOSURE,
+};
 use dermis_core::scene::{posed_bounds, showroom, SceneAssets};
 use dermis_core::shading::{material::PRESETS, Material, ShadingModel};
 use glam::{Mat4, Quat, Vec3};
-
-/// Exposure applied before tone mapping.
-pub const EXPOSURE: f32 = 1.6;
 
 pub struct Demo {
     pub assets: SceneAssets,
@@ -44,9 +44,10 @@ impl Demo {
         let (lo, hi) = posed_bounds(&assets.character, &pose)
             .ok_or_else(|| format!("{}: no skinned mesh", assets.character.source))?;
         let raw_height = (hi.y - lo.y).max(1e-6);
-        // Bring any character to about 1.75 m so the showroom and the light fit it.
+        // Bring any character to the one character height so the showroom and the light
+        // fit it.
         let scale = if model.is_some() {
-            1.75 / raw_height
+            CHARACTER.normalising_scale(raw_height)
         } else {
             1.0
         };
@@ -70,10 +71,12 @@ impl Demo {
 
     /// Uploads everything to the GPU (once).
     pub fn upload(&self, gpu: &Gpu, renderer: &mut Renderer) -> Result<(), String> {
-        renderer.load_character(gpu, &self.assets.character, &self.material)?;
-        for (kind, model) in &self.assets.props {
-            renderer.load_prop(gpu, *kind, model);
-        }
+        renderer.load_scene(
+            gpu,
+            &self.assets.character,
+            &self.assets.props,
+            &self.material,
+        )?;
         renderer.set_props(&gpu.queue, &showroom());
         Ok(())
     }
@@ -96,11 +99,7 @@ impl Demo {
             self.pose.apply_clip(clip, t);
         }
         self.pose.update_world(model);
-        let capsule = Capsule {
-            base: self.position,
-            height: self.height,
-            radius: 0.35 * self.height / 1.75,
-        };
+        let capsule = CHARACTER.capsule_at(self.position, self.height / CHARACTER.height);
         self.camera.update(dt, self.position, self.yaw, &capsule);
     }
 
@@ -143,5 +142,59 @@ impl Demo {
             self.shading.name(),
             self.material.name
         )
+    }
+}
+
+/// A hook run after a demo frame's passes are recorded (screenshots).
+pub type AfterEncode<'h> = dyn FnMut(&mut wgpu::CommandEncoder, &FrameOutput<'_>) + 'h;
+
+/// The demo as the frame driver runs it.
+pub struct DemoFrame<'a> {
+    pub demo: &'a mut Demo,
+    pub renderer: &'a mut Renderer,
+    pub gpu: &'a Gpu,
+    pub after_encode: Option<&'a mut AfterEncode<'a>>,
+    aspect: f32,
+}
+
+impl<'a> DemoFrame<'a> {
+    pub fn new(demo: &'a mut Demo, renderer: &'a mut Renderer, gpu: &'a Gpu) -> Self {
+        Self {
+            demo,
+            renderer,
+            gpu,
+            after_encode: None,
+            aspect: 1.0,
+        }
+    }
+}
+
+impl FrameWork for DemoFrame<'_> {
+    fn update(&mut self, dt: f64, width: u32, height: u32) {
+        self.demo.update(dt as f32);
+        self.aspect = width as f32 / height.max(1) as f32;
+    }
+
+    fn upload(&mut self, _queue: &wgpu::Queue) {
+        self.demo.prepare(self.gpu, self.renderer, self.aspect);
+    }
+
+    fn encode(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        output: &FrameOutput<'_>,
+    ) -> RenderStats {
+        let draw = DrawSet {
+            shading: Some(self.demo.shading),
+            character: true,
+            props: true,
+        };
+        let stats = self
+            .renderer
+            .encode(encoder, output.targets, output.view, draw, None, None);
+        if let Some(hook) = &mut self.after_encode {
+            hook(encoder, output);
+        }
+        stats
     }
 }

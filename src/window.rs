@@ -1,15 +1,18 @@
 //! The desktop window (winit). Default: the runner game. `dermis demo`: the showroom.
-//! Game keys: ←/→ (A/D) change lane, Space/↑ jump or start, M next shading model, Esc back to
-//! the main screen (then quit). Demo keys: M next model, N next material, C next clip.
+//! Game keys: ←/→ (A/D) change lane, Space/↑ jump or start, M next shading model, P pause /
+//! resume, F frame-time overlay, Esc pause a run (again: back to the main screen; there: quit).
+//! A run pauses by itself when the window loses focus. Demo keys: M next model, N next
+//! material, C next clip.
 
 use std::path::PathBuf;
 use std::sync::Arc;
-use std::time::Instant;
 
-use dermis_core::game::{GameGpu, Key as GameKey, Session, Viewport};
-use dermis_core::render::{DrawSet, Gpu, Renderer, Targets};
+use dermis_core::game::{GameFrame, GameGpu, Key as GameKey, Session};
+use dermis_core::lifecycle::FrameStatus;
+use dermis_core::render::{
+    FrameDriver, FrameOutput, Gpu, Output, Renderer, SurfaceOptions, SurfaceTarget,
+};
 use dermis_core::scene::SceneAssets;
-use dermis_core::ui::Insets;
 use winit::application::ApplicationHandler;
 use winit::event::{ElementState, KeyEvent, MouseButton, WindowEvent};
 use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoop};
@@ -17,7 +20,7 @@ use winit::keyboard::Key;
 use winit::window::{Window, WindowId};
 
 use crate::cli::WindowArgs;
-use crate::demo::Demo;
+use crate::demo::{Demo, DemoFrame};
 
 /// What the window shows.
 enum Mode {
@@ -34,10 +37,9 @@ enum Mode {
 
 struct Graphics {
     window: Arc<Window>,
-    surface: wgpu::Surface<'static>,
-    config: wgpu::SurfaceConfiguration,
+    target: SurfaceTarget,
     gpu: Gpu,
-    targets: Targets,
+    driver: FrameDriver,
 }
 
 struct App {
@@ -45,7 +47,6 @@ struct App {
     mode: Mode,
     graphics: Option<Graphics>,
     frames: u64,
-    last: Option<Instant>,
     cursor: (f32, f32),
     error: Option<String>,
 }
@@ -103,7 +104,6 @@ fn run(args: WindowArgs, mode: Mode) -> Result<(), String> {
         mode,
         graphics: None,
         frames: 0,
-        last: None,
         cursor: (0.0, 0.0),
         error: None,
     };
@@ -137,36 +137,20 @@ impl App {
         let gpu = pollster::block_on(Gpu::from_instance(instance, Some(&surface)))
             .map_err(|e| e.to_string())?;
         log::info!("rendering with {}", gpu.adapter_name());
-        let caps = surface.get_capabilities(&gpu.adapter);
-        let format = caps
-            .formats
-            .iter()
-            .copied()
-            .find(|f| f.is_srgb())
-            .or_else(|| caps.formats.first().copied())
-            .ok_or("the surface offers no format")?;
-        let mut usage = wgpu::TextureUsages::RENDER_ATTACHMENT;
-        if self.args.screenshot.is_some() {
-            if !caps.usages.contains(wgpu::TextureUsages::COPY_SRC) {
-                return Err(
-                    "this surface cannot be copied from, so --screenshot is unavailable".into(),
-                );
-            }
-            usage |= wgpu::TextureUsages::COPY_SRC;
-        }
         let size = window.inner_size();
-        let config = wgpu::SurfaceConfiguration {
-            usage,
-            format,
-            width: size.width.max(1),
-            height: size.height.max(1),
-            present_mode: wgpu::PresentMode::AutoVsync,
-            desired_maximum_frame_latency: 2,
-            alpha_mode: caps.alpha_modes[0],
-            view_formats: vec![],
-            color_space: wgpu::SurfaceColorSpace::Auto,
+        let copy_src = self.args.screenshot.is_some();
+        let options = SurfaceOptions {
+            copy_src,
+            ..SurfaceOptions::default()
         };
-        surface.configure(&gpu.device, &config);
+        let mut target = SurfaceTarget::new(&gpu, surface, size.width, size.height, options)
+            .map_err(|e| match copy_src {
+                true if e.contains("copied") => format!("{e}, so --screenshot is unavailable"),
+                _ => e,
+            })?;
+        let notify = window.clone();
+        target.on_present(move || notify.pre_present_notify());
+        let format = target.format();
         match &mut self.mode {
             Mode::Game {
                 assets, gpu: slot, ..
@@ -177,13 +161,12 @@ impl App {
                 *renderer = Some(Box::new(r));
             }
         }
-        let targets = Targets::new(&gpu.device, format, config.width, config.height);
+        let driver = FrameDriver::interactive(&gpu);
         self.graphics = Some(Graphics {
             window,
-            surface,
-            config,
+            target,
             gpu,
-            targets,
+            driver,
         });
         Ok(())
     }
@@ -203,13 +186,13 @@ impl App {
                 "ArrowRight" | "d" => session.key(GameKey::Right),
                 "Space" | "ArrowUp" | "w" | "Enter" => session.key(GameKey::Jump),
                 "m" => session.key(GameKey::NextModel),
-                "Escape" => {
-                    if session.game.screen() == dermis_core::game::Screen::Main {
-                        event_loop.exit();
-                    } else {
-                        session.game.to_main();
-                    }
-                }
+                "p" => session.key(GameKey::Pause),
+                "f" => session.key(GameKey::FrameStats),
+                "Escape" => match session.game.screen() {
+                    dermis_core::game::Screen::Main => event_loop.exit(),
+                    dermis_core::game::Screen::Play if !session.is_paused() => session.pause(),
+                    _ => session.game.to_main(),
+                },
                 _ => return,
             },
             Mode::Demo { demo, renderer } => match key.as_str() {
@@ -235,85 +218,55 @@ impl App {
     }
 
     fn redraw(&mut self, event_loop: &ActiveEventLoop) -> Result<(), String> {
-        let now = Instant::now();
-        let dt = self
-            .last
-            .map_or(1.0 / 60.0, |l| (now - l).as_secs_f32().min(0.1));
-        self.last = Some(now);
         let Some(g) = &mut self.graphics else {
             return Ok(());
         };
-        let frame = match g.surface.get_current_texture() {
-            wgpu::CurrentSurfaceTexture::Success(f) => f,
-            wgpu::CurrentSurfaceTexture::Suboptimal(_)
-            | wgpu::CurrentSurfaceTexture::Outdated
-            | wgpu::CurrentSurfaceTexture::Lost => {
-                g.surface.configure(&g.gpu.device, &g.config);
-                return Ok(());
-            }
-            wgpu::CurrentSurfaceTexture::Timeout | wgpu::CurrentSurfaceTexture::Occluded => {
-                return Ok(())
-            }
-            wgpu::CurrentSurfaceTexture::Validation => {
-                return Err("surface validation error".into())
+        let last = self.args.frames.is_some_and(|n| self.frames + 1 >= n);
+        let want_shot = last && self.args.screenshot.is_some();
+        let mut shot = None;
+        let mut record = |encoder: &mut wgpu::CommandEncoder, output: &FrameOutput<'_>| {
+            if want_shot {
+                shot = Some(screenshot::record(&g.gpu, encoder, output.texture));
             }
         };
-        let view = frame
-            .texture
-            .create_view(&wgpu::TextureViewDescriptor::default());
-        let mut encoder = g
-            .gpu
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+        let output = Output::Surface(&mut g.target);
         let mut title_changed = false;
-        match &mut self.mode {
+        let drawn = match &mut self.mode {
             Mode::Game {
                 session,
                 assets,
                 gpu: Some(gg),
             } => {
-                let viewport = Viewport {
-                    width: g.config.width,
-                    height: g.config.height,
-                    scale: g.window.scale_factor() as f32,
-                    insets: Insets::default(),
-                };
-                let info = session.update(dt, &assets.character, viewport);
-                title_changed = info.shading_changed;
-                gg.upload(&g.gpu.queue, session, &assets.character);
-                gg.encode(&mut encoder, &g.targets, &view, session);
+                let mut hook =
+                    |e: &mut wgpu::CommandEncoder, _: &Session, o: &FrameOutput<'_>| record(e, o);
+                let mut frame = GameFrame::new(session, gg, &assets.character);
+                frame.scale = g.window.scale_factor() as f32;
+                frame.after_encode = Some(&mut hook);
+                let drawn = frame.run(&mut g.driver, &g.gpu, output);
+                title_changed = frame.info.shading_changed;
+                drawn
             }
             Mode::Demo {
                 demo,
                 renderer: Some(r),
             } => {
-                demo.update(dt);
-                demo.prepare(&g.gpu, r, g.config.width as f32 / g.config.height as f32);
-                let draw = DrawSet {
-                    shading: Some(demo.shading),
-                    character: true,
-                    props: true,
-                };
-                r.encode(&mut encoder, &g.targets, &view, draw, None, None);
+                let mut frame = DemoFrame::new(demo, r, &g.gpu);
+                frame.after_encode = Some(&mut record);
+                g.driver.frame(&g.gpu, output, &mut frame)
             }
             _ => return Ok(()),
+        };
+        match drawn {
+            Ok(_) => {}
+            Err(FrameStatus::Validation) => return Err("surface validation error".into()),
+            // No image this time (the surface reconfigured itself where it had to).
+            Err(_) => return Ok(()),
         }
         self.frames += 1;
-        let last = self.args.frames.is_some_and(|n| self.frames >= n);
-        let shot = match (&self.args.screenshot, last) {
-            (Some(path), true) => Some((
-                path.clone(),
-                screenshot::record(&g.gpu, &mut encoder, &frame.texture),
-            )),
-            _ => None,
-        };
-        g.gpu.queue.submit([encoder.finish()]);
-        if let Some((path, buffer)) = shot {
-            screenshot::save(&g.gpu, &buffer, &frame.texture, &path)?;
+        if let (Some(path), Some(pending)) = (&self.args.screenshot, shot) {
+            screenshot::save(&g.gpu, &pending, path)?;
             println!("{}: frame {}", path.display(), self.frames);
         }
-        g.window.pre_present_notify();
-        g.gpu.queue.present(frame);
         if title_changed {
             let title = self.title();
             if let Some(g) = &self.graphics {
@@ -342,18 +295,21 @@ impl ApplicationHandler for App {
             WindowEvent::CloseRequested => event_loop.exit(),
             WindowEvent::Resized(size) => {
                 if let Some(g) = &mut self.graphics {
-                    g.config.width = size.width.max(1);
-                    g.config.height = size.height.max(1);
-                    g.surface.configure(&g.gpu.device, &g.config);
-                    g.targets.ensure(
-                        &g.gpu.device,
-                        g.config.format,
-                        g.config.width,
-                        g.config.height,
-                    );
+                    g.target.resize(&g.gpu, size.width, size.height);
                 }
             }
             WindowEvent::KeyboardInput { event, .. } => self.key(&event, event_loop),
+            WindowEvent::Focused(focused) => {
+                if let Mode::Game { session, .. } = &mut self.mode {
+                    if !focused {
+                        session.auto_pause();
+                    }
+                }
+                // Frames may have stopped while away: the next one starts the clock afresh.
+                if let Some(g) = &mut self.graphics {
+                    g.driver.reset_clock();
+                }
+            }
             WindowEvent::CursorMoved { position, .. } => {
                 self.cursor = (position.x as f32, position.y as f32)
             }
@@ -388,11 +344,19 @@ impl ApplicationHandler for App {
 }
 
 mod screenshot {
-    use dermis_core::render::Gpu;
+    use dermis_core::render::{read_mapped, Gpu};
 
     fn padded_row(width: u32) -> u32 {
         (width * 4).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT)
             * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT
+    }
+
+    /// A copy of a surface image on its way to a readback buffer.
+    pub struct Pending {
+        buffer: wgpu::Buffer,
+        width: u32,
+        height: u32,
+        format: wgpu::TextureFormat,
     }
 
     /// Records a copy of the surface texture into a new readback buffer.
@@ -400,7 +364,7 @@ mod screenshot {
         gpu: &Gpu,
         encoder: &mut wgpu::CommandEncoder,
         texture: &wgpu::Texture,
-    ) -> wgpu::Buffer {
+    ) -> Pending {
         let (w, h) = (texture.width(), texture.height());
         let buffer = gpu.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("screenshot"),
@@ -420,29 +384,23 @@ mod screenshot {
             },
             texture.size(),
         );
-        buffer
+        Pending {
+            buffer,
+            width: w,
+            height: h,
+            format: texture.format(),
+        }
     }
 
     /// Waits for the copy and writes a PNG (BGRA surfaces are swizzled to RGBA).
-    pub fn save(
-        gpu: &Gpu,
-        buffer: &wgpu::Buffer,
-        texture: &wgpu::Texture,
-        path: &std::path::Path,
-    ) -> Result<(), String> {
-        let (w, h) = (texture.width(), texture.height());
-        let slice = buffer.slice(..);
-        slice.map_async(wgpu::MapMode::Read, |_| {});
-        gpu.wait();
+    pub fn save(gpu: &Gpu, shot: &Pending, path: &std::path::Path) -> Result<(), String> {
+        let (w, h) = (shot.width, shot.height);
         let bgra = matches!(
-            texture.format(),
+            shot.format,
             wgpu::TextureFormat::Bgra8Unorm | wgpu::TextureFormat::Bgra8UnormSrgb
         );
-        let mut pixels = Vec::with_capacity((w * h * 4) as usize);
-        {
-            let data = slice
-                .get_mapped_range()
-                .map_err(|e| format!("screenshot readback: {e}"))?;
+        let pixels = read_mapped(&gpu.device, &shot.buffer, |data| {
+            let mut pixels = Vec::with_capacity((w * h * 4) as usize);
             for row in 0..h {
                 let start = (row * padded_row(w)) as usize;
                 for px in data[start..start + (w * 4) as usize].chunks_exact(4) {
@@ -450,8 +408,9 @@ mod screenshot {
                     pixels.extend_from_slice(&[r, px[1], b, 255]);
                 }
             }
-        }
-        buffer.unmap();
+            pixels
+        })
+        .ok_or("screenshot readback: the buffer could not be mapped")?;
         image::save_buffer(path, &pixels, w, h, image::ExtendedColorType::Rgba8)
             .map_err(|e| format!("{}: {e}", path.display()))
     }

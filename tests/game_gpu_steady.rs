@@ -7,11 +7,12 @@ use std::alloc::{GlobalAlloc, Layout, System};
 use std::path::Path;
 use std::sync::atomic::{AtomicU64, Ordering};
 
-use dermis_core::game::{GameGpu, Session, Viewport};
-use dermis_core::render::{Gpu, LiveObjects, Offscreen, OFFSCREEN_FORMAT};
+use dermis_core::game::{GameFrame, GameGpu, Session};
+use dermis_core::render::{
+    Clock, FrameDriver, Gpu, LiveObjects, Offscreen, Output, OFFSCREEN_FORMAT,
+};
 use dermis_core::scene::SceneAssets;
 use dermis_core::shading::ShadingModel;
-use dermis_core::ui::Insets;
 
 struct Counting;
 static ALLOCS: AtomicU64 = AtomicU64::new(0);
@@ -42,12 +43,10 @@ fn play_creates_nothing_and_wgpu_allocations_do_not_grow() {
     let mut gg = GameGpu::new(&gpu, OFFSCREEN_FORMAT, &assets).unwrap();
     let target = Offscreen::new(&gpu, w, h);
     let mut session = Session::new(&assets.character, 7, None, true);
-    let viewport = Viewport {
-        width: w,
-        height: h,
-        scale: 1.0,
-        insets: Insets::default(),
-    };
+    // The shells' frame driver, at a fixed step, waiting for the GPU after each frame.
+    let mut driver = FrameDriver::new(Clock::Fixed(1.0 / 60.0))
+        .with_alloc_counter(|| ALLOCS.load(Ordering::Relaxed));
+    driver.sync = true;
     let frames = 1000;
     let warm_up = 100;
     let mut live = None;
@@ -59,17 +58,11 @@ fn play_creates_nothing_and_wgpu_allocations_do_not_grow() {
             let next = session.shading().next();
             session.settings.set_shading_model(next);
         }
-        let a0 = ALLOCS.load(Ordering::Relaxed);
-        session.update(1.0 / 60.0, &assets.character, viewport);
-        let a1 = ALLOCS.load(Ordering::Relaxed);
-        gg.upload(&gpu.queue, &mut session, &assets.character);
-        let mut encoder = gpu
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
-        gg.encode(&mut encoder, &target.targets, &target.view, &session);
-        gpu.queue.submit([encoder.finish()]);
-        let a2 = ALLOCS.load(Ordering::Relaxed);
-        gpu.wait();
+        let times = GameFrame::new(&mut session, &mut gg, &assets.character)
+            .run(&mut driver, &gpu, Output::Offscreen(&target))
+            .unwrap();
+        let a = times.allocs;
+        let (a0, a1, a2) = (a.start, a.updated, a.submitted);
         if frame == warm_up {
             live = Some(LiveObjects::read(&gpu.device));
         } else if frame > warm_up {

@@ -1,13 +1,13 @@
 //! GPU conformance: the renderer's WGSL shading functions, run by the compute harness
-//! (`dermis_core::shading::conformance`) on the real driver (lavapipe in CI), against the f64
+//! (`dermis_core::render::conformance`) on the real driver (lavapipe in CI), against the f64
 //! references beside each model, over the renderer's materials and a grid of angles, light
 //! distances and thicknesses. No skip: without an adapter the tests fail.
 
+use dermis_core::render::conformance::{Harness, Item};
 use dermis_core::render::Gpu;
-use dermis_core::shading::conformance::{
-    self, Harness, Item, NdFunction, Pixel, Precision, F32_ND, F32_SHADE,
-};
+use dermis_core::shading::conformance::{self, NdFunction, Precision, F32_ND, F32_SHADE};
 use dermis_core::shading::material::{Material, SKIN1, WHITE_COAT};
+use dermis_core::shading::pixel::Pixel;
 use dermis_core::shading::{bake, ShadingModel};
 use glam::DVec3;
 

@@ -10,11 +10,13 @@
 //! inside f16's range (`NdFunction::f16_domain`), within `F16_ND`; it runs where the adapter
 //! has SHADER_F16 (lavapipe does) and says so; with CI=true a missing f16 is a failure.
 
+use dermis_core::render::conformance::{Harness, Item};
 use dermis_core::render::Gpu;
 use dermis_core::shading::conformance::{
-    self, round_f16, Harness, Item, NdFunction, Pixel, Precision, F16_ND, F32_ND, F32_SHADE,
+    self, round_f16, NdFunction, Precision, F16_ND, F32_ND, F32_SHADE,
 };
 use dermis_core::shading::material::Material;
+use dermis_core::shading::pixel::Pixel;
 use dermis_core::shading::{bake, ShadingModel};
 use glam::DVec3;
 

@@ -5,7 +5,7 @@
 use dermis_core::probe::Probe;
 use dermis_core::reference::{self, metric, ReferenceSet, Scene};
 use dermis_core::render::{Gpu, LiveObjects, PipelineSet, Renderer};
-use dermis_core::shading::{bake, preintegrated, Material, ShadingModel};
+use dermis_core::shading::{Material, ShadingModel};
 
 fn gpu() -> Gpu {
     Gpu::headless().unwrap_or_else(|e| panic!("{e}"))
@@ -97,30 +97,69 @@ fn translucency_matches_path_traced_backlit_slabs() {
 }
 
 #[test]
-fn the_preintegrated_lut_renders_what_it_was_baked_with() {
-    // The LUT model is outside the compute conformance harness (texture filtering precision
-    // is the implementation's); here its rendered flat-ground response under a directional
-    // light at several incidences is compared with the f64 bake it samples.
+fn the_preintegrated_lut_matches_path_traced_spheres_and_flat_ground() {
+    // The LUT's rows are the Monte Carlo sphere walker's (baked offline, shipped); rendered
+    // through the real renderer (three views, linear filtering in log2 M, curvature from
+    // the mesh's derivatives) the spheres must score within the acceptance bound of the
+    // spatial-transport issue (best model ≤ 0.10 on spheres), each sphere within 0.15.
     let gpu = gpu();
     let mut probe = Probe::new(&gpu);
-    let m = skin1();
-    let b = bake::for_material(&m);
-    // A slab 1 mm thick lit from behind reads the translucency; a shadow-edge plane far on
-    // its lit side reads the front response: the edge scene's lit strips, far from the edge.
-    for theta in [0.0f64, 45.0] {
-        let scene = Scene::ShadowEdge { theta_deg: theta };
-        let edges = [20.0, 25.0];
-        let got = probe
-            .render(&gpu, ShadingModel::Preintegrated, &m, &scene, &edges)
-            .unwrap();
-        let mu = theta.to_radians().cos();
-        // Per unit surface irradiance: the LUT's flat row is R(1)·μ·q(μ) per unit beam.
-        let want = preintegrated::sphere_response(&b, mu, 1e7);
-        for (c, (&g, &w)) in got[0].iter().zip(&want).enumerate() {
-            let rel = g / (w / mu) - 1.0;
-            assert!(rel.abs() < 0.03, "θ {theta} c {c}: {g} vs {}", w / mu);
+    let (mut sum, mut noise, mut n) = (0.0, 0.0, 0.0);
+    for m in reference::acceptance_materials() {
+        let set = set(&m);
+        for entry in set
+            .entries
+            .iter()
+            .filter(|e| matches!(e.scene, Scene::Sphere { .. }))
+        {
+            let got = probe
+                .render(
+                    &gpu,
+                    ShadingModel::Preintegrated,
+                    &m,
+                    &entry.scene,
+                    &entry.edges,
+                )
+                .unwrap();
+            let s = metric::score(&got, entry);
+            println!("{} {}: {:.3}", m.name, entry.scene.label(), s.mean_log_all);
+            assert!(
+                s.mean_log_all <= tolerance(entry, 0.15),
+                "{} {}: {s:?}",
+                m.name,
+                entry.scene.label()
+            );
+            sum += s.mean_log_all;
+            noise += s.ref_rel_se_all;
+            n += 1.0;
+        }
+        // Flat ground (the LUT's flattest row) far on the lit side of a shadow edge: the
+        // diffuse reflectance at incidence θ, the edge reference's plateau.
+        for theta in [0.0f64, 45.0] {
+            let entry = set
+                .entry(&Scene::ShadowEdge { theta_deg: theta })
+                .expect("reference has the edge");
+            let k = entry.values.len() - 1;
+            let edges = &entry.edges[k..];
+            let got = probe
+                .render(&gpu, ShadingModel::Preintegrated, &m, &entry.scene, edges)
+                .unwrap();
+            for (c, (&g, (&w, &se))) in got[0]
+                .iter()
+                .zip(entry.values[k].iter().zip(&entry.std_err[k]))
+                .enumerate()
+            {
+                let se = se / w;
+                assert!(
+                    (g / w - 1.0).abs() < 0.04 + 3.0 * se,
+                    "{} θ {theta} c {c}: {g} vs {w}",
+                    m.name
+                );
+            }
         }
     }
+    assert_eq!(n, 6.0, "three spheres per material");
+    assert!(sum / n <= 0.10 + 3.0 * noise / n, "mean {:.3}", sum / n);
 }
 
 #[test]

@@ -93,22 +93,38 @@ fn android_main(app: AndroidApp) {
                 }
                 MainEvent::Pause => {
                     renderer.reset_clock();
+                    if let Some(game) = renderer.game_mut() {
+                        game.session.auto_pause();
+                    }
                     Event::Pause
                 }
                 MainEvent::Stop => Event::Stop,
-                MainEvent::GainedFocus => Event::GainedFocus,
-                MainEvent::LostFocus => Event::LostFocus,
+                MainEvent::GainedFocus => {
+                    // The system shows the bars again while the app is away.
+                    crate::display::enter_immersive(&app);
+                    Event::GainedFocus
+                }
+                MainEvent::LostFocus => {
+                    if let Some(game) = renderer.game_mut() {
+                        game.session.auto_pause();
+                    }
+                    Event::LostFocus
+                }
                 MainEvent::InitWindow { .. } => {
+                    crate::display::enter_immersive(&app);
+                    renderer.set_insets(crate::display::safe_insets(&app));
                     let (width, height) = window_size(&app);
                     Event::InitWindow { width, height }
                 }
                 MainEvent::TerminateWindow { .. } => Event::TermWindow,
                 MainEvent::ConfigChanged { .. } => {
                     renderer.set_scale(display_scale(&app));
+                    renderer.set_insets(crate::display::safe_insets(&app));
                     let (width, height) = window_size(&app);
                     Event::Resized { width, height }
                 }
                 MainEvent::WindowResized { .. } | MainEvent::ContentRectChanged { .. } => {
+                    renderer.set_insets(crate::display::safe_insets(&app));
                     let (width, height) = window_size(&app);
                     Event::Resized { width, height }
                 }
@@ -422,6 +438,8 @@ fn handle_input(
                 | Keycode::DpadCenter
                 | Keycode::ButtonA => Key::Jump,
                 Keycode::M => Key::NextModel,
+                Keycode::P | Keycode::MediaPlayPause | Keycode::ButtonStart => Key::Pause,
+                Keycode::F => Key::FrameStats,
                 _ => return InputStatus::Unhandled,
             };
             if key.action() == KeyAction::Down && key.repeat_count() == 0 {

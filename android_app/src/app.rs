@@ -1,14 +1,15 @@
 //! GPU side of the Android app: the wgpu context ([`dermis_core::render::Gpu`], created once
 //! on the first window, kept across pause/resume, so limits and features match the desktop),
 //! the game's GPU objects ([`GameGpu`]: every pipeline, the scene and the UI, created with the
-//! first surface and kept), the window surface (created on InitWindow, dropped on TermWindow)
-//! with its MSAA colour / depth [`Targets`], and the frame: the same
-//! [`Session`] loop as the desktop window (update → upload → one pass → present).
+//! first surface and kept), the window surface ([`SurfaceTarget`], the core's one surface
+//! helper: created on InitWindow, dropped on TermWindow, with its MSAA colour / depth
+//! targets), and the frame: the core's [`FrameDriver`] running the game ([`GameFrame`]: the
+//! same [`Session`] loop as the desktop window, the governor choosing the shading tier).
 
 use crate::lifecycle::FrameStatus;
 use android_activity::ndk::native_window::NativeWindow;
-use dermis_core::game::{GameGpu, Key, Screen, Session, Viewport};
-use dermis_core::render::{Gpu, Targets};
+use dermis_core::game::{GameFrame, GameGpu, Key, Screen, Session};
+use dermis_core::render::{Clock, FrameDriver, Gpu, Output, SurfaceOptions, SurfaceTarget};
 use dermis_core::scene::SceneAssets;
 use dermis_core::ui::Insets;
 use std::path::PathBuf;
@@ -36,13 +37,6 @@ impl HasDisplayHandle for AndroidWindow {
         // SAFETY: the Android display handle carries no data.
         Ok(unsafe { DisplayHandle::borrow_raw(raw) })
     }
-}
-
-/// The window surface and what depends on its size.
-struct Target {
-    surface: wgpu::Surface<'static>,
-    config: wgpu::SurfaceConfiguration,
-    targets: Targets,
 }
 
 /// The game: assets (loaded once, at start), the session, and — once there is a GPU — its
@@ -100,11 +94,13 @@ impl Game {
 
 pub struct Renderer {
     gpu: Option<Gpu>,
-    target: Option<Target>,
+    target: Option<SurfaceTarget>,
     game: Option<Game>,
     /// Display density / 160 (the UI's scale).
     scale: f32,
-    last: Option<Instant>,
+    /// Safe-area insets (physical pixels): the UI stays out of cutouts and system bars.
+    insets: Insets,
+    driver: FrameDriver,
     frames: u64,
     /// The soak run in progress (intent extras or a Game Loop test), fed each frame.
     pub soak: Option<crate::soak::Soak>,
@@ -118,7 +114,8 @@ impl Renderer {
             target: None,
             game,
             scale,
-            last: None,
+            insets: Insets::ZERO,
+            driver: FrameDriver::new(Clock::INTERACTIVE),
             frames: 0,
             soak: None,
         }
@@ -143,9 +140,16 @@ impl Renderer {
         }
     }
 
+    pub fn set_insets(&mut self, insets: Insets) {
+        if insets != self.insets {
+            log::info!("safe-area insets {insets:?}");
+            self.insets = insets;
+        }
+    }
+
     /// Forgets the last frame time (after a pause the game does not jump ahead).
     pub fn reset_clock(&mut self) {
-        self.last = None;
+        self.driver.reset_clock();
     }
 
     /// Creates the surface for `window` (and, the first time, the GPU context — Vulkan first,
@@ -167,50 +171,42 @@ impl Renderer {
                 .map_err(|e| format!("create_surface: {e}"))?,
             None => {
                 let (gpu, surface) = init_gpu(window)?;
+                // The interactive driver: wall clock, every frame GPU-timed when it can be.
+                self.driver = FrameDriver::interactive(&gpu);
                 self.gpu = Some(gpu);
                 surface
             }
         };
         let gpu = self.gpu.as_ref().expect("gpu initialised above");
-        let mut config = surface
-            .get_default_config(&gpu.adapter, width.max(1), height.max(1))
-            .ok_or("the surface is not supported by the adapter")?;
-        let caps = surface.get_capabilities(&gpu.adapter);
         // Keep the pipelines' format when this surface offers it; else prefer sRGB.
         let previous = game.gpu.as_ref().map(|(_, f)| *f);
-        if let Some(format) = previous
-            .filter(|f| caps.formats.contains(f))
-            .or_else(|| caps.formats.iter().copied().find(|f| f.is_srgb()))
-        {
-            config.format = format;
-        }
-        config.present_mode = wgpu::PresentMode::Fifo;
-        config.desired_maximum_frame_latency = 2;
-        surface.configure(&gpu.device, &config);
+        let options = SurfaceOptions {
+            present_mode: wgpu::PresentMode::Fifo,
+            keep_format: previous,
+            // The lifecycle decides between reconfiguring and recreating the surface.
+            self_heal: false,
+            ..SurfaceOptions::default()
+        };
+        let target = SurfaceTarget::new(gpu, surface, width, height, options)?;
         log::info!(
             "surface created: {}x{} {:?} {:?}",
-            config.width,
-            config.height,
-            config.format,
-            config.alpha_mode
+            target.config.width,
+            target.config.height,
+            target.config.format,
+            target.config.alpha_mode
         );
-        if previous != Some(config.format) {
+        if previous != Some(target.format()) {
             let t0 = Instant::now();
-            let gg = GameGpu::new(gpu, config.format, &game.assets)
+            let gg = GameGpu::new(gpu, target.format(), &game.assets)
                 .map_err(|e| format!("game GPU setup: {e}"))?;
             log::info!(
                 "pipelines and scene uploaded for {:?} in {} ms",
-                config.format,
+                target.format(),
                 t0.elapsed().as_millis()
             );
-            game.gpu = Some((gg, config.format));
+            game.gpu = Some((gg, target.format()));
         }
-        let targets = Targets::new(&gpu.device, config.format, config.width, config.height);
-        self.target = Some(Target {
-            surface,
-            config,
-            targets,
-        });
+        self.target = Some(target);
         Ok(())
     }
 
@@ -235,11 +231,7 @@ impl Renderer {
         if width == 0 || height == 0 {
             return;
         }
-        t.config.width = width;
-        t.config.height = height;
-        t.surface.configure(&gpu.device, &t.config);
-        t.targets
-            .ensure(&gpu.device, t.config.format, width, height);
+        t.resize(gpu, width, height);
         log::info!("surface reconfigured: {width}x{height}");
     }
 
@@ -251,57 +243,27 @@ impl Renderer {
         let Some((gg, _)) = &mut game.gpu else {
             return FrameStatus::Occluded;
         };
-        let (frame, status) = match t.surface.get_current_texture() {
-            wgpu::CurrentSurfaceTexture::Success(f) => (f, FrameStatus::Presented),
-            wgpu::CurrentSurfaceTexture::Suboptimal(f) => (f, FrameStatus::Suboptimal),
-            wgpu::CurrentSurfaceTexture::Timeout => return FrameStatus::Timeout,
-            wgpu::CurrentSurfaceTexture::Occluded => return FrameStatus::Occluded,
-            wgpu::CurrentSurfaceTexture::Outdated => return FrameStatus::Outdated,
-            wgpu::CurrentSurfaceTexture::Lost => return FrameStatus::Lost,
-            wgpu::CurrentSurfaceTexture::Validation => return FrameStatus::Validation,
+        let mut frame = GameFrame::new(&mut game.session, gg, &game.assets.character);
+        frame.scale = self.scale;
+        frame.insets = self.insets;
+        let times = match frame.run(&mut self.driver, gpu, Output::Surface(t)) {
+            Ok(times) => times,
+            Err(status) => return status,
         };
-        let now = Instant::now();
-        let dt = self
-            .last
-            .map_or(1.0 / 60.0, |l| (now - l).as_secs_f32().min(0.1));
-        self.last = Some(now);
-        let (width, height) = (frame.texture.width(), frame.texture.height());
-        t.targets
-            .ensure(&gpu.device, t.config.format, width, height);
-        let viewport = Viewport {
-            width,
-            height,
-            scale: self.scale,
-            insets: Insets::default(),
-        };
-        let info = game.session.update(dt, &game.assets.character, viewport);
-        if info.shading_changed {
+        if frame.info.shading_changed {
             log::info!("shading model: {}", game.session.shading().name());
         }
-        gg.upload(&gpu.queue, &mut game.session, &game.assets.character);
-        let view = frame
-            .texture
-            .create_view(&wgpu::TextureViewDescriptor::default());
-        let mut enc = gpu
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                label: Some("frame"),
-            });
-        gg.encode(&mut enc, &t.targets, &view, &game.session);
-        let commands = enc.finish();
-        let t_submit = Instant::now();
-        gpu.queue.submit([commands]);
-        gpu.queue.present(frame);
-        let presented = Instant::now();
         if let Some(soak) = &mut self.soak {
             soak.frame(
                 gpu,
-                (width, height),
-                now,
-                (t_submit - now).as_secs_f64() * 1e3,
-                (presented - t_submit).as_secs_f64() * 1e3,
-                presented,
-                game.session.shading(),
+                (times.width, times.height),
+                times.start,
+                times.cpu_ms(),
+                times.submit_present_ms(),
+                times.presented,
+                game.session.drawn_model(),
+                game.session.needs,
+                game.session.governor.changes(),
             );
         }
         self.frames += 1;
@@ -314,7 +276,7 @@ impl Renderer {
                 game.session.game.best()
             );
         }
-        status
+        times.status
     }
 }
 

@@ -49,7 +49,7 @@ impl Extras {
 }
 
 /// `obj.name()` for a method without arguments that returns an object.
-fn get<'local, 'o, 'sig, 'args>(
+pub(crate) fn get<'local, 'o, 'sig, 'args>(
     env: &mut Env<'local>,
     obj: impl AsRef<JObject<'o>>,
     name: impl AsRef<jni::strings::JNIStr>,
@@ -59,7 +59,7 @@ fn get<'local, 'o, 'sig, 'args>(
 }
 
 /// Runs `f` with the JNI environment and the activity (attached to this thread).
-fn with_activity<T>(
+pub(crate) fn with_activity<T>(
     app: &AndroidApp,
     f: impl FnOnce(&mut Env, &JObject) -> Result<T, jni::errors::Error>,
 ) -> Result<T, jni::errors::Error> {

@@ -15,6 +15,8 @@ mod app;
 #[cfg(target_os = "android")]
 mod assets;
 #[cfg(target_os = "android")]
+mod display;
+#[cfg(target_os = "android")]
 mod intent;
 #[cfg(target_os = "android")]
 mod ndk_dl;

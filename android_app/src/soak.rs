@@ -10,7 +10,7 @@
 //! 60 fps.
 
 use crate::ndk_dl::{HintSession, Thermal, ThermalSample};
-use dermis_core::governor::Tiers;
+use dermis_core::governor::{Needs, Tiers};
 use dermis_core::render::{Gpu, LiveObjects};
 use dermis_core::shading::ShadingModel;
 use dermis_core::soak::{
@@ -64,6 +64,7 @@ pub struct Soak {
     page: f64,
     warm_up_s: f64,
     tier_changes: u64,
+    governor_changes: u64,
     last_tier: usize,
     live_warm: Option<LiveObjects>,
     live_changes: u64,
@@ -96,6 +97,7 @@ impl Soak {
             last_second_t: 0.0,
             page: page_bytes(),
             tier_changes: 0,
+            governor_changes: 0,
             last_tier: usize::MAX,
             live_warm: None,
             live_changes: 0,
@@ -167,7 +169,8 @@ impl Soak {
 
     /// Records one presented frame: `work_start` when the frame's work began (after the
     /// swapchain image was acquired), `cpu_ms` update..encode, `submit_ms` submit + present,
-    /// `presented` right after `present` returned.
+    /// `presented` right after `present` returned; `model` the tier the session's governor
+    /// drew, `needs` what the frame needed, `governor_changes` the governor's changes so far.
     #[allow(clippy::too_many_arguments)]
     pub fn frame(
         &mut self,
@@ -178,7 +181,10 @@ impl Soak {
         submit_ms: f64,
         presented: Instant,
         model: ShadingModel,
+        needs: Needs,
+        governor_changes: u64,
     ) {
+        self.governor_changes = governor_changes;
         self.begin(gpu);
         self.size = size;
         let start = self.start.unwrap_or(work_start);
@@ -210,8 +216,8 @@ impl Soak {
             allocs: 0,
             tier,
             model: model.name(),
-            coverage: f32::NAN,
-            lit: true,
+            coverage: needs.coverage,
+            lit: needs.lit,
         });
         if t_s >= self.next_second {
             self.next_second += 1.0;
@@ -228,7 +234,7 @@ impl Soak {
                 t_s,
                 self.last_second_t,
                 tier,
-                0,
+                self.governor_changes,
             );
             rec.rss_mb = resident_mb(self.page);
             self.seconds.push(rec);
@@ -302,7 +308,7 @@ impl Soak {
             budget_ms: 1000.0 / self.cfg.target_fps,
             warm_up_s: self.warm_up_s,
             tiers: self.tiers.as_slice(),
-            governor_changes: 0,
+            governor_changes: self.governor_changes,
             tier_changes: self.tier_changes,
             live_warm: self.live_warm,
             live_end,

@@ -51,6 +51,7 @@
 
 use glam::{Mat4, Vec3, Vec4};
 
+use crate::render::rig::CHARACTER;
 use crate::shading::ShadingModel;
 
 /// The most tiers a list holds.
@@ -133,6 +134,34 @@ pub struct Needs {
     pub coverage: f32,
     /// Whether a light reaches the character.
     pub lit: bool,
+}
+
+impl Needs {
+    /// What a frame needs for a character standing at `feet` (the player transform's origin)
+    /// seen through `view_proj`: the coverage of its [`character_box`], and whether a point
+    /// light of `light_intensity` at `light_pos` delivers [`MIN_IRRADIANCE`] to its chest.
+    pub fn of_character(
+        view_proj: Mat4,
+        feet: Vec3,
+        light_pos: Vec3,
+        light_intensity: f32,
+    ) -> Self {
+        let (min, max) = character_box(feet);
+        let chest = CHARACTER.chest_at(feet);
+        Self {
+            coverage: projected_coverage(view_proj, min, max),
+            lit: light_reaches(light_pos, light_intensity, chest, MIN_IRRADIANCE),
+        }
+    }
+}
+
+/// Minimum irradiance (W/m² at the character's chest) for "a light reaches it".
+pub const MIN_IRRADIANCE: f32 = 0.2;
+
+/// The character's bounding box (feet at the origin of the player transform): the one
+/// [`CHARACTER`] bound's.
+pub fn character_box(feet: Vec3) -> (Vec3, Vec3) {
+    CHARACTER.box_at(feet)
 }
 
 impl Default for Needs {
@@ -244,6 +273,20 @@ impl Governor {
 
     pub fn tiers(&self) -> &Tiers {
         &self.tiers
+    }
+
+    /// Starts over with `tiers` (the player chose another model), keeping the configuration
+    /// and the switches.
+    pub fn retier(&mut self, tiers: Tiers) {
+        let (enabled, scheduling) = (self.enabled, self.scheduling);
+        *self = Self::new(tiers, self.config);
+        self.enabled = enabled;
+        self.scheduling = scheduling;
+    }
+
+    /// The tier [`Self::select`] returned last.
+    pub fn drawn(&self) -> usize {
+        self.drawn
     }
 
     /// The tier index to draw this frame (call before rendering it).
@@ -405,4 +448,23 @@ pub fn projected_coverage(view_proj: Mat4, min: Vec3, max: Vec3) -> f32 {
 pub fn light_reaches(light_pos: Vec3, intensity: f32, target: Vec3, min_irradiance: f32) -> bool {
     let d2 = light_pos.distance_squared(target).max(1e-4);
     intensity > 0.0 && intensity / d2 >= min_irradiance
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_character_in_view_under_the_light_is_covered_and_lit() {
+        let view_proj = crate::camera::look_at(Vec3::new(0.0, 1.0, 4.0), Vec3::Y, 1.0, 16.0 / 9.0);
+        let light = crate::render::KEY_LIGHT_OFFSET;
+        let seen = Needs::of_character(view_proj, Vec3::ZERO, light, 30.0);
+        let (min, max) = character_box(Vec3::ZERO);
+        assert_eq!(seen.coverage, projected_coverage(view_proj, min, max));
+        assert!(seen.coverage > 0.01 && seen.lit);
+        // Behind the camera, and out of a weak light's reach.
+        let behind = Needs::of_character(view_proj, Vec3::new(0.0, 0.0, 20.0), light, 0.1);
+        assert_eq!(behind.coverage, 0.0);
+        assert!(!behind.lit);
+    }
 }

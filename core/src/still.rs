@@ -5,13 +5,11 @@ use glam::{Mat4, Quat, Vec3};
 use crate::anim::Pose;
 use crate::camera::look_at;
 use crate::render::{
-    DrawSet, FrameView, Gpu, Light, Offscreen, PassTimer, Renderer, RgbaImage, OFFSCREEN_FORMAT,
+    DrawSet, FrameView, Gpu, Light, Offscreen, PassTimer, Renderer, RgbaImage, CHARACTER, EXPOSURE,
+    OFFSCREEN_FORMAT,
 };
 use crate::scene::{frame_bounds, posed_bounds, showroom, SceneAssets};
 use crate::shading::{Material, ShadingModel};
-
-/// Exposure before tone mapping for stills (same as the desktop demo).
-pub const EXPOSURE: f32 = 1.6;
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Shot {
@@ -20,7 +18,7 @@ pub struct Shot {
     pub material: Material,
     pub clip: usize,
     pub time: f32,
-    /// Light position; `None` puts it above, in front and to the right of the character.
+    /// Light position; `None`: the key light ([`crate::render::KEY_LIGHT_OFFSET`]).
     pub light: Option<Vec3>,
     /// Draw the showroom props around the character.
     pub props: bool,
@@ -65,10 +63,12 @@ impl StillRenderer {
         format: wgpu::TextureFormat,
     ) -> Result<Self, String> {
         let mut renderer = Renderer::new(gpu, format);
-        renderer.load_character(gpu, &assets.character, &crate::shading::material::SKIN1)?;
-        for (kind, model) in &assets.props {
-            renderer.load_prop(gpu, *kind, model);
-        }
+        renderer.load_scene(
+            gpu,
+            &assets.character,
+            &assets.props,
+            &crate::shading::material::SKIN1,
+        )?;
         renderer.set_props(&gpu.queue, &showroom());
         Ok(Self {
             renderer,
@@ -107,8 +107,9 @@ impl StillRenderer {
         self.pose.update_world(model);
         let (lo, hi) = posed_bounds(model, &self.pose)
             .ok_or_else(|| format!("{}: no skinned mesh", model.source))?;
-        // Normalise any character to 1.75 m standing on the floor at the origin.
-        let scale = 1.75 / (hi.y - lo.y).max(1e-6);
+        // Normalise any character to the one character height, standing on the floor at the
+        // origin.
+        let scale = CHARACTER.normalising_scale(hi.y - lo.y);
         let center = (lo + hi) * 0.5;
         let world = Mat4::from_scale_rotation_translation(
             Vec3::splat(scale),
@@ -122,10 +123,11 @@ impl StillRenderer {
         let aspect = w as f32 / h as f32;
         let fov = 40f32.to_radians();
         let (eye, target) = frame_bounds(wlo.min(whi), wlo.max(whi), fov, shot.fill, aspect);
-        let light = Light {
-            position: shot.light.unwrap_or(Vec3::new(1.5, 3.0, 2.5)),
+        // The key light of a character at the origin unless the shot places it.
+        let light = shot.light.map_or_else(Light::default, |position| Light {
+            position,
             ..Light::default()
-        };
+        });
         let view = FrameView {
             view_proj: look_at(eye, target, fov, aspect),
             camera_pos: eye,

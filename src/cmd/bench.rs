@@ -12,6 +12,7 @@ use serde_json::json;
 
 use crate::cmd::args::{check_out_file, parse_bench_frames, parse_rounds};
 use crate::cmd::gputime::{frame_close_up, time_models};
+use crate::cmd::progress::Progress;
 use crate::cmd::stats::{median, percentile, ratio_ci};
 
 #[derive(clap::Args, Debug)]
@@ -43,7 +44,7 @@ pub enum BenchKind {
     /// The accuracy-vs-time table: errors against Monte Carlo, GPU cost, shader size.
     Shading(crate::cmd::bench_shading::ShadingArgs),
     /// GPU and CPU time saved by effect scheduling (tier by coverage and light), on/off ratios.
-    Effects(crate::cmd::soak::EffectsArgs),
+    Effects(crate::cmd::bench_effects::EffectsArgs),
 }
 
 pub fn run(args: BenchArgs) -> Result<(), String> {
@@ -55,7 +56,7 @@ pub fn run(args: BenchArgs) -> Result<(), String> {
             json,
         } => frame(rounds, frames, out, json),
         BenchKind::Shading(args) => crate::cmd::bench_shading::run(args),
-        BenchKind::Effects(args) => crate::cmd::soak::bench_effects(args),
+        BenchKind::Effects(args) => crate::cmd::bench_effects::run(args),
     }
 }
 
@@ -69,6 +70,8 @@ fn frame(
         check_out_file(path, None)?;
     }
     let start = Instant::now();
+    // Steps: first frame, close-up, the CPU frames (in eighths), the GPU rounds.
+    let mut progress = Progress::new("bench frame", (2 + 8 + rounds) as u64);
     let assets = SceneAssets::load(&crate::paths::assets_dir(), None).map_err(|e| e.to_string())?;
     let gpu = Gpu::headless().map_err(|e| e.to_string())?;
     let (w, h) = (1280, 720);
@@ -80,6 +83,7 @@ fn frame(
     };
     still.render(&gpu, &assets, &first)?;
     let first_frame_ms = start.elapsed().as_secs_f64() * 1e3;
+    progress.step("first frame");
 
     // Close-up: the character alone, zoomed until it covers at least 40 % of the frame.
     let mut close = Shot {
@@ -87,6 +91,7 @@ fn frame(
         ..first
     };
     let coverage = frame_close_up(&gpu, &mut still, &assets, &mut close, 0.4)?;
+    progress.step("close-up framed");
 
     // CPU per frame: animation + joint palettes + uniforms + command encoding.
     let model = &assets.character;
@@ -126,6 +131,9 @@ fn frame(
         if f % 8 == 7 {
             gpu.wait();
         }
+        if (f + 1) % frames.div_ceil(8) == 0 {
+            progress.step("CPU frames");
+        }
     }
     gpu.wait();
 
@@ -135,10 +143,13 @@ fn frame(
         ShadingModel::ALL.iter().map(|m| Some(*m)).collect();
     models.push(None);
     let gpu_ms = if gpu.timestamps {
-        time_models(&gpu, &mut still, &models, rounds, || {})?
+        time_models(&gpu, &mut still, &models, rounds, || {
+            progress.step("GPU rounds")
+        })?
     } else {
         vec![Vec::new(); models.len()]
     };
+    progress.finish();
     let name = |m: &Option<ShadingModel>| m.map_or("unlit", |m| m.name());
     let ward = &gpu_ms[0];
     let per_model: Vec<serde_json::Value> = models

@@ -12,10 +12,9 @@
 //!   (`dermis shaders --spirv` + `tools/mali/cycles.sh`), the subsurface pass added for the
 //!   screen-space models, loops weighted by their iteration counts (see [`mali_cost`]).
 
-use std::io::IsTerminal;
 use std::path::PathBuf;
-use std::time::{Duration, Instant};
 
+use crate::cmd::progress::Progress;
 use dermis_core::anim::Pose;
 use dermis_core::probe::{self, Probe};
 use dermis_core::reference::metric::score;
@@ -53,60 +52,6 @@ pub const COST_SIZE: (u32, u32) = (1280, 720);
 pub const COST_VIEW_MM: f64 = 256.0;
 /// Mali GPUs reported.
 pub const GPUS: [&str; 2] = ["G52", "G57"];
-
-/// Progress: an indicatif bar on a terminal, else a line on stderr every few seconds.
-struct Progress {
-    bar: Option<indicatif::ProgressBar>,
-    total: u64,
-    done: u64,
-    start: Instant,
-    last: Instant,
-}
-
-impl Progress {
-    fn new(total: u64) -> Self {
-        let bar = std::io::stderr().is_terminal().then(|| {
-            let bar = indicatif::ProgressBar::new(total);
-            if let Ok(style) = indicatif::ProgressStyle::with_template(
-                "{msg:32} [{bar:40}] {pos}/{len} {elapsed_precise}",
-            ) {
-                bar.set_style(style);
-            }
-            bar.enable_steady_tick(Duration::from_millis(250));
-            bar
-        });
-        let now = Instant::now();
-        Self {
-            bar,
-            total,
-            done: 0,
-            start: now,
-            last: now,
-        }
-    }
-
-    fn step(&mut self, msg: &str) {
-        self.done += 1;
-        if let Some(bar) = &self.bar {
-            bar.set_message(msg.to_string());
-            bar.inc(1);
-        } else if self.last.elapsed() >= Duration::from_secs(5) {
-            self.last = Instant::now();
-            eprintln!(
-                "bench shading: {}/{} {msg} ({:.0} s)",
-                self.done,
-                self.total,
-                self.start.elapsed().as_secs_f64()
-            );
-        }
-    }
-
-    fn finish(&self) {
-        if let Some(bar) = &self.bar {
-            bar.finish_and_clear();
-        }
-    }
-}
 
 /// The acceptance materials with their reference sets.
 type References = Vec<(Material, ReferenceSet)>;
@@ -149,7 +94,10 @@ pub fn run(args: ShadingArgs) -> Result<(), String> {
     let gpu = Gpu::headless().map_err(|e| e.to_string())?;
     let models = ShadingModel::ALL;
     let scenes: usize = sets.iter().map(|(_, s)| s.entries.len()).sum();
-    let mut progress = Progress::new((scenes * models.len() + args.rounds + 2) as u64);
+    let mut progress = Progress::new(
+        "bench shading",
+        (scenes * models.len() + args.rounds + 2) as u64,
+    );
 
     // Accuracy: per model, every scene of every material.
     let mut scores: Vec<Vec<SceneScore>> = models.iter().map(|_| Vec::new()).collect();

@@ -1,12 +1,15 @@
 pub mod args;
 pub mod bench;
+pub mod bench_effects;
 pub mod bench_shading;
 pub mod chart;
 pub mod gputime;
+pub mod lut;
 pub mod pareto;
 pub mod play;
 pub mod pose;
 pub mod profile;
+pub mod progress;
 pub mod reference;
 pub mod render;
 pub mod shaders;

@@ -1,13 +1,13 @@
 //! `dermis play`: the game headless (offscreen), with a summary of what each frame cost.
 
 use std::path::PathBuf;
-use std::time::Instant;
 
-use dermis_core::game::{GameGpu, Screen, Session, Viewport};
-use dermis_core::render::{Gpu, LiveObjects, Offscreen, OFFSCREEN_FORMAT};
+use dermis_core::game::{GameFrame, GameGpu, Screen, Session};
+use dermis_core::render::{
+    Clock, FrameDriver, FrameOutput, Gpu, LiveObjects, Offscreen, Output, OFFSCREEN_FORMAT,
+};
 use dermis_core::scene::SceneAssets;
 use dermis_core::shading::ShadingModel;
-use dermis_core::ui::Insets;
 use serde_json::json;
 
 use crate::alloc_count::allocations;
@@ -59,13 +59,12 @@ pub fn run(args: PlayArgs) -> Result<(), String> {
     if let Some(m) = args.shading {
         session.settings.set_shading_model(m);
     }
-    let viewport = Viewport {
-        width: w,
-        height: h,
-        scale: 1.0,
-        insets: Insets::default(),
-    };
-    let dt = (1.0 / args.fps) as f32;
+    // `play` measures the chosen model: no tier scheduling.
+    session.configure_governor(session.governor.config, false, false);
+    // The game's fixed step makes results independent of the frame rate.
+    let mut driver = FrameDriver::new(Clock::Fixed((1.0 / args.fps) as f32 as f64))
+        .with_alloc_counter(allocations);
+    driver.sync = true;
     let mut cpu_ms = Vec::with_capacity(prealloc(args.frames));
     let mut dermis_allocs = Vec::with_capacity(prealloc(args.frames));
     let mut wgpu_allocs = Vec::with_capacity(prealloc(args.frames));
@@ -77,45 +76,44 @@ pub fn run(args: PlayArgs) -> Result<(), String> {
     let mut shots: Vec<(&str, bool)> = vec![("main", false), ("play", false), ("game-over", false)];
     let mut play_frames = 0u64;
     for frame in 0..args.frames {
-        let t0 = Instant::now();
-        let a0 = allocations();
-        let info = session.update(dt, &assets.character, viewport);
-        let a1 = allocations();
-        gg.upload(&gpu.queue, &mut session, &assets.character);
-        let frame_uploads = session.uploads as f64;
-        let mut encoder = gpu
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
-        let stats = gg.encode(&mut encoder, &target.targets, &target.view, &session);
-        let screen = session.game.screen();
-        play_frames = if screen == Screen::Play {
-            play_frames + 1
-        } else {
-            0
-        };
-        let want = match screen {
-            Screen::Main => 0,
-            Screen::Play if play_frames > 90 => 1,
-            Screen::GameOver => 2,
-            _ => usize::MAX,
-        };
-        let shoot = args.screenshots.is_some() && want < shots.len() && !shots[want].1;
-        if shoot {
-            target.copy_out(&mut encoder);
-        }
-        gpu.queue.submit([encoder.finish()]);
-        let a2 = allocations();
-        cpu_ms.push(t0.elapsed().as_secs_f64() * 1e3);
-        uploads.push(frame_uploads);
-        gpu.wait();
-        if shoot {
+        let mut shoot = None;
+        // After the frame's passes: copy out the first frame of each screen not yet saved.
+        let mut screenshot =
+            |encoder: &mut wgpu::CommandEncoder, session: &Session, _: &FrameOutput<'_>| {
+                let screen = session.game.screen();
+                play_frames = if screen == Screen::Play {
+                    play_frames + 1
+                } else {
+                    0
+                };
+                let want = match screen {
+                    Screen::Main => 0,
+                    Screen::Play if play_frames > 90 => 1,
+                    Screen::GameOver => 2,
+                    _ => usize::MAX,
+                };
+                if args.screenshots.is_some() && want < shots.len() && !shots[want].1 {
+                    target.copy_out(encoder);
+                    shoot = Some(want);
+                }
+            };
+        let mut game = GameFrame::new(&mut session, &mut gg, &assets.character);
+        game.after_encode = Some(&mut screenshot);
+        let times = game
+            .run(&mut driver, &gpu, Output::Offscreen(&target))
+            .map_err(|s| format!("frame not drawn: {s:?}"))?;
+        let (info, stats) = (game.info, game.stats);
+        cpu_ms.push((times.submitted - times.start).as_secs_f64() * 1e3);
+        uploads.push(session.uploads as f64);
+        if let Some(want) = shoot {
             let dir = args.screenshots.as_ref().expect("checked above");
             let path = dir.join(format!("{}.png", shots[want].0));
             target.read(&gpu).save_png(&path)?;
             shots[want].1 = true;
         }
-        dermis_allocs.push((a1 - a0) as f64);
-        wgpu_allocs.push((a2 - a1) as f64);
+        let a = times.allocs;
+        dermis_allocs.push((a.updated - a.start) as f64);
+        wgpu_allocs.push((a.submitted - a.updated) as f64);
         draw_calls = draw_calls.max(stats.draw_calls);
         max_ticks = max_ticks.max(info.ticks);
         if frame == WARM_UP {

@@ -1,12 +1,10 @@
 //! `dermis reference`: generates the path-traced reference data set
 //! (`tools/reference/<material>.json`, see `dermis_core::reference`).
 
-use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
-use std::sync::Arc;
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
+use crate::cmd::progress::Progress;
 use dermis_core::reference::{self, ReferenceSet};
 use dermis_core::shading::material::{Material, SKIN1, WHITE_COAT};
 
@@ -102,54 +100,11 @@ pub fn run(args: ReferenceArgs) -> Result<(), String> {
     Ok(())
 }
 
-/// Runs `work` with a progress display: an indicatif bar on a terminal, otherwise a line on
-/// stderr every few seconds.
+/// Runs `work` with a [`Progress`] display of its simulations.
 fn with_progress<T>(name: &str, work: impl FnOnce(&mut dyn FnMut(usize, usize)) -> T) -> T {
-    let done = Arc::new(AtomicUsize::new(0));
-    let total = Arc::new(AtomicUsize::new(0));
-    let finished = Arc::new(AtomicBool::new(false));
-    if std::io::stderr().is_terminal() {
-        let bar = indicatif::ProgressBar::new(1);
-        if let Ok(style) = indicatif::ProgressStyle::with_template(
-            "{prefix} {bar:40} {pos}/{len} simulations  {elapsed_precise} (eta {eta})",
-        ) {
-            bar.set_style(style);
-        }
-        bar.set_prefix(name.to_string());
-        bar.enable_steady_tick(Duration::from_millis(200));
-        let out = work(&mut |d, t| {
-            bar.set_length(t as u64);
-            bar.set_position(d as u64);
-        });
-        bar.finish_and_clear();
-        return out;
-    }
-    let ticker = {
-        let (done, total, finished) = (done.clone(), total.clone(), finished.clone());
-        let name = name.to_string();
-        std::thread::spawn(move || {
-            let start = Instant::now();
-            let mut last = Instant::now();
-            while !finished.load(Ordering::Relaxed) {
-                std::thread::sleep(Duration::from_millis(100));
-                if last.elapsed() >= Duration::from_secs(5) {
-                    last = Instant::now();
-                    eprintln!(
-                        "{name}: {}/{} simulations, {:.0} s",
-                        done.load(Ordering::Relaxed),
-                        total.load(Ordering::Relaxed),
-                        start.elapsed().as_secs_f64()
-                    );
-                }
-            }
-        })
-    };
-    let out = work(&mut |d, t| {
-        done.store(d, Ordering::Relaxed);
-        total.store(t, Ordering::Relaxed);
-    });
-    finished.store(true, Ordering::Relaxed);
-    let _ = ticker.join();
+    let mut progress = Progress::new(name, 1);
+    let out = work(&mut |d, t| progress.set(d as u64, t as u64, "simulations"));
+    progress.finish();
     out
 }
 

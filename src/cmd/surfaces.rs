@@ -4,7 +4,7 @@
 
 use std::sync::Arc;
 
-use dermis_core::render::{Gpu, LiveObjects, Targets};
+use dermis_core::render::{Gpu, LiveObjects, SurfaceOptions, SurfaceTarget};
 use winit::application::ApplicationHandler;
 use winit::event::WindowEvent;
 use winit::event_loop::{ActiveEventLoop, EventLoop};
@@ -42,19 +42,24 @@ impl App {
             .map_err(|e| e.to_string())?;
         self.created += 1;
         let size = window.inner_size();
-        let config = surface
-            .get_default_config(&gpu.adapter, size.width.max(1), size.height.max(1))
-            .ok_or("surface not supported")?;
-        surface.configure(&gpu.device, &config);
-        let targets = Targets::new(&gpu.device, config.format, config.width, config.height);
-        if let wgpu::CurrentSurfaceTexture::Success(frame) = surface.get_current_texture() {
+        let mut target = SurfaceTarget::new(
+            gpu,
+            surface,
+            size.width,
+            size.height,
+            SurfaceOptions {
+                present_mode: wgpu::PresentMode::Fifo,
+                ..SurfaceOptions::default()
+            },
+        )?;
+        if let Ok((frame, status)) = target.acquire(gpu) {
             let view = frame.texture.create_view(&Default::default());
             let mut encoder = gpu.device.create_command_encoder(&Default::default());
             {
                 let _pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                     label: None,
                     color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                        view: &targets.msaa,
+                        view: &target.targets.msaa,
                         depth_slice: None,
                         resolve_target: Some(&view),
                         ops: wgpu::Operations {
@@ -69,12 +74,12 @@ impl App {
                 });
             }
             gpu.queue.submit([encoder.finish()]);
-            gpu.queue.present(frame);
+            drop(view);
+            target.present(gpu, frame, status);
             self.presented += 1;
         }
         gpu.wait();
-        drop(targets);
-        drop(surface);
+        drop(target);
         drop(window);
         gpu.wait();
         if self.before.is_none() {

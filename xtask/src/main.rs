@@ -3,9 +3,13 @@
 //! * `assets [--out DIR]`: regenerate the character and props in `assets/` (reproducible).
 //! * `ui-atlas`: regenerate the UI atlas and bitmap font in `assets/ui/`.
 //! * `apk [--release]`: build the signed Android APK.
+//! * `android-test`: dermis-core's tests and the APK's library on Android bionic under qemu.
+//! * `device-run`: install the APK on a connected phone, run a soak, collect its report.
 
+mod android_test;
 mod apk;
 mod assets;
+mod device_run;
 mod ui_atlas;
 
 fn main() {
@@ -13,8 +17,12 @@ fn main() {
     let result = match args.first().map(String::as_str) {
         Some("assets") => assets::run(&args[1..]),
         Some("apk") => apk::run(&args[1..]),
+        Some("android-test") => android_test::run(&args[1..]),
+        Some("device-run") => device_run::run(&args[1..]),
         Some("ui-atlas") => ui_atlas::run(&args[1..]),
-        _ => Err("usage: cargo xtask <assets|ui-atlas|apk> [args]".to_string()),
+        _ => Err(
+            "usage: cargo xtask <assets|ui-atlas|apk|android-test|device-run> [args]".to_string(),
+        ),
     };
     if let Err(e) = result {
         eprintln!("error: {e}");

@@ -263,6 +263,36 @@ fn load_buffers<'a>(
     Ok(Buffers { data })
 }
 
+/// The material `extras` entry declaring the base-colour texture's alpha a skin mask
+/// (`{"dermisSkinMask": "baseColorAlpha"}`; the project's character has it, see `xtask assets`).
+pub const SKIN_MASK_EXTRAS: (&str, &str) = ("dermisSkinMask", "baseColorAlpha");
+
+/// Whether material `mi` declares its base-colour alpha a skin mask.
+fn declares_skin_mask(mat: &gltf::Material<'_>, mi: usize) -> bool {
+    let Some(raw) = mat.extras() else {
+        return false;
+    };
+    let (key, value) = SKIN_MASK_EXTRAS;
+    let extras: serde_json::Value = serde_json::from_str(raw.get()).unwrap_or_default();
+    match extras.get(key) {
+        None => false,
+        Some(v) if v.as_str() == Some(value) => true,
+        Some(v) => {
+            log::warn!("material {mi}: extras.{key} = {v} is not \"{value}\"; treated as skin");
+            false
+        }
+    }
+}
+
+/// Makes every texel opaque: the engine draws opaque, and the character shader reads the
+/// base colour's alpha as the skin mask, so a texture without a declared mask is all skin.
+fn opaque(mut tex: TextureImage) -> TextureImage {
+    for px in tex.rgba8.chunks_exact_mut(4) {
+        px[3] = 255;
+    }
+    tex
+}
+
 fn load_materials(
     doc: &gltf::Document,
     buffers: &Buffers<'_>,
@@ -271,7 +301,8 @@ fn load_materials(
     let root = doc.as_json();
     let mut materials = Vec::with_capacity(root.materials.len());
     let mut textures: Vec<TextureImage> = Vec::new();
-    let mut by_image: HashMap<usize, usize> = HashMap::new();
+    // (image, alpha kept as the skin mask) -> texture slot.
+    let mut by_image: HashMap<(usize, bool), usize> = HashMap::new();
     let mut image_bytes: u64 = 0;
     for mat in doc.materials() {
         let mi = mat.index().unwrap_or(0);
@@ -295,10 +326,12 @@ fn load_materials(
                 .map(|t| t.source.value())
                 .filter(|&ii| ii < root.images.len())
                 .ok_or_else(|| format!("material {mi}: texture {ti} has no valid image source"))?;
-            let slot = match by_image.get(&ii) {
+            let masked = declares_skin_mask(&mat, mi);
+            let slot = match by_image.get(&(ii, masked)) {
                 Some(&s) => s,
                 None => {
                     let tex = load_image(doc, buffers, resolve, ii)?;
+                    let tex = if masked { tex } else { opaque(tex) };
                     image_bytes = image_bytes.saturating_add(tex.rgba8.len() as u64);
                     if image_bytes > MAX_TOTAL_IMAGE_BYTES {
                         return Err(format!(
@@ -306,7 +339,7 @@ fn load_materials(
                         ));
                     }
                     textures.push(tex);
-                    by_image.insert(ii, textures.len() - 1);
+                    by_image.insert((ii, masked), textures.len() - 1);
                     textures.len() - 1
                 }
             };

@@ -101,6 +101,7 @@ pub struct Material {
 }
 
 /// A decoded image: RGBA8, row-major, `srgb` when it holds colour (base colour textures).
+/// Alpha is the skin mask (see the [module docs](super)): 255 = skin, 0 = cloth.
 #[derive(Clone, Debug)]
 pub struct TextureImage {
     pub width: u32,

@@ -20,10 +20,7 @@ impl GameGpu {
     ) -> Result<Self, String> {
         // Only what the game can reach: every menu model (the governor's tiers are among them).
         let mut renderer = Renderer::with_pipelines(gpu, format, &PipelineSet::game());
-        renderer.load_character(gpu, &assets.character, &SKIN1)?;
-        for (kind, model) in &assets.props {
-            renderer.load_prop(gpu, *kind, model);
-        }
+        renderer.load_scene(gpu, &assets.character, &assets.props, &SKIN1)?;
         let (rgba, w, h) = crate::ui::atlas_rgba();
         let ui = UiRenderer::new(&gpu.device, &gpu.queue, format, MSAA_SAMPLES, &rgba, w, h);
         Ok(Self { renderer, ui })

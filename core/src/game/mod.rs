@@ -8,7 +8,10 @@
 //! transform, the camera target, the animation blend); the app renders it.
 
 mod bot;
+mod frame;
 mod gpu;
+mod input;
+mod player;
 pub mod rng;
 mod screens;
 pub mod session;
@@ -16,7 +19,9 @@ mod settings;
 pub mod track;
 
 pub use bot::Bot;
+pub use frame::{AfterEncode, GameFrame};
 pub use gpu::GameGpu;
+pub use input::{Input, Swipe};
 pub use screens::{GameUi, UiOutcome};
 pub use session::{FrameInfo, Key, Session, Viewport};
 pub use settings::Settings;
@@ -27,7 +32,7 @@ use glam::{Mat4, Quat, Vec3};
 use crate::pool::Pool;
 use crate::render::{PropInstance, PropKind};
 use rng::Pcg32;
-use track::{lane_x, row_pattern, CHUNK_LEN, MAX_CHUNKS, MAX_OBSTACLES};
+use track::{row_pattern, CHUNK_LEN, MAX_CHUNKS, MAX_OBSTACLES};
 
 /// Simulation rate and step.
 pub const TICK_HZ: u32 = 120;
@@ -59,63 +64,6 @@ pub enum Screen {
     Main,
     Play,
     GameOver,
-}
-
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Swipe {
-    Left,
-    Right,
-    Up,
-    Down,
-}
-
-/// One frame's (or tick's) input. Booleans are *presses* (edges), not held keys.
-/// `tap` (a touch in Play, physical pixels) jumps; `swipe` changes lane / jumps. Outside Play
-/// only `jump` acts (it starts / replays); taps there belong to the UI.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct Input {
-    pub left: bool,
-    pub right: bool,
-    pub jump: bool,
-    pub tap: Option<(f32, f32)>,
-    pub swipe: Option<Swipe>,
-}
-
-impl Input {
-    pub const NONE: Input = Input {
-        left: false,
-        right: false,
-        jump: false,
-        tap: None,
-        swipe: None,
-    };
-
-    /// A touch gesture from press to release (physical pixels): a tap when it moved less
-    /// than `threshold` pixels, else a swipe in its dominant direction (screen y grows down).
-    pub fn from_gesture(down: (f32, f32), up: (f32, f32), threshold: f32) -> Input {
-        let (dx, dy) = (up.0 - down.0, up.1 - down.1);
-        let mut input = Input::NONE;
-        if dx * dx + dy * dy < threshold * threshold {
-            input.tap = Some(up);
-        } else if dx.abs() >= dy.abs() {
-            input.swipe = Some(if dx < 0.0 { Swipe::Left } else { Swipe::Right });
-        } else {
-            input.swipe = Some(if dy < 0.0 { Swipe::Up } else { Swipe::Down });
-        }
-        input
-    }
-
-    pub(crate) fn merge(&mut self, o: &Input) {
-        self.left |= o.left;
-        self.right |= o.right;
-        self.jump |= o.jump;
-        self.tap = self.tap.or(o.tap);
-        self.swipe = self.swipe.or(o.swipe);
-    }
-
-    fn is_empty(&self) -> bool {
-        *self == Input::NONE
-    }
 }
 
 /// Animation clips in the order the character's clip list uses.
@@ -193,6 +141,7 @@ pub struct Game {
     new_best: bool,
     anim: Anim,
     pending: Input,
+    paused: bool,
 }
 
 impl Game {
@@ -224,6 +173,7 @@ impl Game {
                 times: [0.0; 3],
             },
             pending: Input::NONE,
+            paused: false,
         };
         g.reset_world();
         g
@@ -306,6 +256,35 @@ impl Game {
     fn set_screen(&mut self, s: Screen) {
         self.screen = s;
         self.screen_ticks = 0;
+        self.paused = false;
+    }
+
+    /// Pauses a run (only a run in Play pauses; elsewhere this does nothing): no tick runs
+    /// and the time frames bring is dropped, so the run resumes where it stopped, without a
+    /// jump. Input pressed while paused is dropped too.
+    pub fn pause(&mut self) {
+        if self.screen == Screen::Play {
+            self.paused = true;
+            self.pending = Input::NONE;
+        }
+    }
+
+    /// Resumes a paused run.
+    pub fn resume(&mut self) {
+        self.paused = false;
+    }
+
+    /// Pauses a running run, resumes a paused one.
+    pub fn toggle_pause(&mut self) {
+        if self.paused {
+            self.resume();
+        } else {
+            self.pause();
+        }
+    }
+
+    pub fn is_paused(&self) -> bool {
+        self.paused
     }
 
     pub fn set_best(&mut self, best: u32) {
@@ -316,8 +295,12 @@ impl Game {
 
     /// Advances by a frame of `frame_dt` seconds: runs 0..n fixed ticks. `input` (presses
     /// since the last frame) acts on the first tick; if no tick runs it is kept for the next.
-    /// Returns the number of ticks run.
+    /// Returns the number of ticks run. While paused nothing runs and `frame_dt` and `input`
+    /// are dropped.
     pub fn update(&mut self, frame_dt: f32, input: &Input) -> u32 {
+        if self.paused {
+            return 0;
+        }
         self.pending.merge(input);
         self.update_with(frame_dt, |_| Input::NONE)
     }
@@ -325,6 +308,9 @@ impl Game {
     /// Like [`Game::update`], with the input sampled before *every* tick from `input`
     /// (e.g. the [`Bot`]), so the result does not depend on how ticks fall into frames.
     pub fn update_with(&mut self, frame_dt: f32, mut input: impl FnMut(&Game) -> Input) -> u32 {
+        if self.paused {
+            return 0;
+        }
         let dt = if frame_dt.is_finite() {
             frame_dt.clamp(0.0, 0.25)
         } else {
@@ -375,65 +361,6 @@ impl Game {
             Screen::Play => self.play_tick(&input),
         }
         self.anim_tick();
-    }
-
-    fn play_tick(&mut self, input: &Input) {
-        let p = &mut self.player;
-        let left = input.left || input.swipe == Some(Swipe::Left);
-        let right = input.right || input.swipe == Some(Swipe::Right);
-        if left && !right {
-            p.lane = (p.lane - 1).max(-1);
-        } else if right && !left {
-            p.lane = (p.lane + 1).min(1);
-        }
-        let jump = input.jump || input.tap.is_some() || input.swipe == Some(Swipe::Up);
-        if jump && p.grounded() {
-            p.vy = JUMP_SPEED;
-            self.anim.times[Clip::Jump as usize] = 0.0;
-        }
-        // Lateral: close a fixed fraction of the gap per tick.
-        let target = lane_x(p.lane);
-        let old_x = p.x;
-        p.x += (target - p.x) * LANE_FOLLOW;
-        if (target - p.x).abs() < 1e-3 {
-            p.x = target;
-        }
-        self.prev_x_vel = (p.x - old_x) / TICK_DT;
-        // Vertical.
-        if !p.grounded() || p.vy > 0.0 {
-            p.vy -= GRAVITY * TICK_DT;
-            p.y += p.vy * TICK_DT;
-            if p.y <= 0.0 {
-                p.y = 0.0;
-                p.vy = 0.0;
-            }
-        }
-        p.speed = (p.speed + ACCELERATION * TICK_DT).min(MAX_SPEED);
-        p.z += p.speed * TICK_DT;
-        self.score = p.z.max(0.0) as u32;
-        self.stream_world();
-        if self.collides() {
-            self.player.speed = 0.0;
-            if self.score > self.best {
-                self.best = self.score;
-                self.new_best = true;
-            }
-            self.set_screen(Screen::GameOver);
-        }
-    }
-
-    fn player_aabb(&self) -> (Vec3, Vec3) {
-        let p = self.player.pos();
-        let h = Vec3::new(PLAYER_HALF_WIDTH, 0.0, PLAYER_HALF_DEPTH);
-        (p - h, p + h + Vec3::Y * PLAYER_HEIGHT)
-    }
-
-    fn collides(&self) -> bool {
-        let (pmin, pmax) = self.player_aabb();
-        self.obstacles.values().any(|o| {
-            let (omin, omax) = o.aabb();
-            pmin.cmplt(omax).all() && omin.cmplt(pmax).all()
-        })
     }
 
     fn anim_tick(&mut self) {

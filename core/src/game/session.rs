@@ -1,7 +1,9 @@
 //! One running game as the apps drive it: input → fixed-step simulation → animation, camera,
-//! props and UI → GPU uploads → draw set. The desktop window, the headless `play` command,
-//! the soak test and the Android app all run this same loop, and none of its per-frame steps
-//! allocates in steady state.
+//! props and UI → what the frame needs and the shading tier it gets ([`Governor`]) → GPU
+//! uploads → draw set. The desktop window, the headless `play` command, the soak, `bench
+//! effects` and the Android app all run this same loop (through
+//! [`GameFrame`](super::GameFrame) and the core's frame driver), and none of its per-frame
+//! steps allocates in steady state.
 
 use std::path::PathBuf;
 
@@ -10,13 +12,12 @@ use glam::Vec3;
 use super::{Bot, Game, GameUi, Input, Screen, Settings, Swipe};
 use crate::anim::Pose;
 use crate::asset::Model;
-use crate::camera::{Capsule, FollowCamera};
+use crate::camera::FollowCamera;
+use crate::governor::{Change, Governor, GovernorConfig, Needs, Tiers};
+use crate::render::rig::{key_light, CHARACTER, EXPOSURE};
 use crate::render::{DrawSet, FrameView, Light, PropInstance, Renderer, UiRenderer};
 use crate::shading::ShadingModel;
 use crate::ui::{Insets, Ui};
-
-/// Exposure before tone mapping in the game.
-pub const EXPOSURE: f32 = 1.6;
 
 /// A discrete key the game understands.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -26,6 +27,10 @@ pub enum Key {
     Jump,
     /// Cycle the shading model (a developer shortcut; the menu button does the same).
     NextModel,
+    /// Pause a run / resume it (the pause panel's Resume button does the same).
+    Pause,
+    /// Show / hide the frame-time overlay.
+    FrameStats,
 }
 
 /// The screen the UI is laid out for.
@@ -65,6 +70,10 @@ pub struct Session {
     pub character_visible: bool,
     /// Buffer uploads (`write_buffer` calls) made by the last [`Session::upload`].
     pub uploads: u32,
+    /// Chooses the character's shading tier each frame (tiers follow the player's choice).
+    pub governor: Governor,
+    /// What this frame needs (computed by [`Session::update`]).
+    pub needs: Needs,
 }
 
 impl Session {
@@ -88,7 +97,6 @@ impl Session {
             bot: autoplay.then(|| Bot::new(seed)),
             ui: Ui::with_embedded_atlas(),
             gui: GameUi::new(),
-            settings,
             settings_path,
             pose: Pose::new(character),
             camera,
@@ -104,7 +112,38 @@ impl Session {
             },
             character_visible: true,
             uploads: 0,
+            governor: Governor::new(
+                Tiers::for_choice(settings.shading_model()),
+                GovernorConfig::for_fps(60.0),
+            ),
+            needs: Needs::default(),
+            settings,
         }
+    }
+
+    /// Sets the governor's configuration (frame budget) and switches: `budget` the
+    /// frame-time governor, `scheduling` the coverage / light tiers (both off: always the
+    /// chosen model).
+    pub fn configure_governor(&mut self, config: GovernorConfig, budget: bool, scheduling: bool) {
+        self.governor = Governor::new(Tiers::for_choice(self.shading()), config);
+        self.governor.enabled = budget && scheduling;
+        self.governor.scheduling = scheduling;
+    }
+
+    /// The tier drawn this frame (index in the governor's tiers).
+    pub fn tier(&self) -> usize {
+        self.governor.drawn()
+    }
+
+    /// The model the character is drawn with this frame: the governor's tier.
+    pub fn drawn_model(&self) -> ShadingModel {
+        self.governor.tiers().model(self.governor.drawn())
+    }
+
+    /// Feeds the governor what the frame drawn last cost (ms; NaN when unknown) and the time
+    /// it covered (s).
+    pub fn record_frame(&mut self, cost_ms: f64, dt_s: f64) -> Option<Change> {
+        self.governor.record(cost_ms, dt_s)
     }
 
     /// Whether a sphere (centre, radius) is inside the camera's view for `aspect`.
@@ -142,7 +181,33 @@ impl Session {
                 self.settings.set_shading_model(next);
                 self.save_settings();
             }
+            Key::Pause => {
+                self.game.toggle_pause();
+                self.pending = Input::NONE;
+            }
+            Key::FrameStats => self.gui.show_frame_stats = !self.gui.show_frame_stats,
         }
+    }
+
+    /// Pauses the run (focus lost, the app sent to the background); nothing outside a run.
+    /// The run stays paused until the player resumes it.
+    pub fn pause(&mut self) {
+        self.game.pause();
+        self.pending = Input::NONE;
+        self.pointer_down = None;
+    }
+
+    /// The window lost focus / the app went to the background: pauses a player's run. An
+    /// autoplayed session (the bot: `play`, the soak, tests) keeps running, so its clocks
+    /// and reports never include a pause nobody asked for.
+    pub fn auto_pause(&mut self) {
+        if self.bot.is_none() {
+            self.pause();
+        }
+    }
+
+    pub fn is_paused(&self) -> bool {
+        self.game.is_paused()
     }
 
     /// Pointer (mouse or touch) in physical pixels.
@@ -154,7 +219,7 @@ impl Session {
     pub fn pointer_up(&mut self, x: f32, y: f32) {
         self.ui.pointer_up(x, y);
         if let Some(down) = self.pointer_down.take() {
-            if self.game.screen() == Screen::Play {
+            if self.game.screen() == Screen::Play && !self.game.is_paused() {
                 let gesture = Input::from_gesture(down, (x, y), 24.0 * self.viewport.scale);
                 self.pending.merge(&gesture);
             }
@@ -187,18 +252,17 @@ impl Session {
         };
         let (target, yaw) = self.game.camera_target();
         let (feet, _) = self.game.player_transform();
-        let capsule = Capsule {
-            base: feet,
-            height: 1.8,
-            radius: 0.4,
-        };
-        self.camera.update(dt, target, yaw, &capsule);
+        // Paused: the camera holds still too.
+        let camera_dt = if self.game.is_paused() { 0.0 } else { dt };
+        self.camera
+            .update(camera_dt, target, yaw, &CHARACTER.capsule_at(feet, 1.0));
         let aspect = viewport.width as f32 / viewport.height.max(1) as f32;
-        self.character_visible = self.sphere_visible(feet + Vec3::Y * 0.9, 1.2, aspect);
+        let (centre, radius) = CHARACTER.sphere_at(feet);
+        self.character_visible = self.sphere_visible(centre, radius, aspect);
         if self.character_visible {
             self.animate(character);
         }
-        self.light.position = feet + Vec3::new(1.5, 3.0, 2.5);
+        self.light.position = key_light(feet).position;
         self.game.props(&mut self.props);
         // UI.
         let shading_before = self.shading();
@@ -215,6 +279,17 @@ impl Session {
         if outcome.settings_changed {
             self.save_settings();
         }
+        // The shading tier: what the frame needs and the frame budget.
+        if self.governor.tiers().model(0) != self.shading() {
+            self.governor.retier(Tiers::for_choice(self.shading()));
+        }
+        self.needs = Needs::of_character(
+            self.camera.view_proj(aspect),
+            feet,
+            self.light.position,
+            self.light.intensity,
+        );
+        self.governor.select(self.needs);
         FrameInfo {
             ticks,
             ui_rebuilt: self.ui.rebuilt_this_frame(),
@@ -278,9 +353,10 @@ impl Session {
         }
     }
 
+    /// What to draw: the character with this frame's tier ([`Session::drawn_model`]).
     pub fn draw_set(&self) -> DrawSet {
         DrawSet {
-            shading: Some(self.shading()),
+            shading: Some(self.drawn_model()),
             character: true,
             props: true,
         }
@@ -290,6 +366,52 @@ impl Session {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_session_schedules_tiers_under_its_frame_budget() {
+        let model = crate::probe::plane_model(0.5, 0.01);
+        let mut s = Session::new(&model, 1, None, true);
+        s.settings.set_shading_model(ShadingModel::Burley);
+        let vp = Viewport {
+            width: 640,
+            height: 360,
+            scale: 1.0,
+            insets: Insets::default(),
+        };
+        let dt = 1.0 / 60.0;
+        let frames = |s: &mut Session, n: usize, cost_ms: f64| {
+            for _ in 0..n {
+                s.update(dt, &model, vp);
+                s.record_frame(cost_ms, dt as f64);
+            }
+        };
+        frames(&mut s, 30, 5.0);
+        // The tiers follow the player's choice; in view and lit, the chosen model is drawn.
+        let tiers = [
+            ShadingModel::Burley,
+            ShadingModel::Preintegrated,
+            ShadingModel::Ward,
+        ];
+        assert_eq!(s.governor.tiers().as_slice(), tiers);
+        assert!(s.needs.lit && s.needs.coverage > 0.0, "{:?}", s.needs);
+        assert_eq!(s.tier(), 0, "{:?}", s.needs);
+        // Over budget: one tier cheaper (and no other change within the window); the
+        // choice itself is kept.
+        frames(&mut s, 40, 40.0);
+        assert_eq!(
+            (s.tier(), s.drawn_model()),
+            (1, ShadingModel::Preintegrated)
+        );
+        assert_eq!(s.draw_set().shading, Some(ShadingModel::Preintegrated));
+        assert_eq!(s.shading(), ShadingModel::Burley);
+        // A new choice starts the governor over with its own tiers (switches kept).
+        s.configure_governor(GovernorConfig::for_fps(60.0), false, true);
+        s.key(Key::NextModel);
+        frames(&mut s, 1, 40.0);
+        assert_eq!(s.governor.tiers().model(0), s.shading());
+        assert!(!s.governor.enabled && s.governor.scheduling);
+        assert_eq!(s.tier(), 0);
+    }
 
     #[test]
     fn the_player_is_visible_and_things_behind_the_camera_are_not() {

@@ -18,7 +18,8 @@ pub struct Light {
 impl Default for Light {
     fn default() -> Self {
         Self {
-            position: Vec3::new(1.5, 3.0, 2.5),
+            // The key light of a character standing at the origin.
+            position: super::rig::KEY_LIGHT_OFFSET,
             intensity: 30.0,
             color: Vec3::new(1.0, 0.97, 0.92),
             ambient: Vec3::new(0.10, 0.11, 0.13),

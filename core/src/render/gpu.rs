@@ -39,6 +39,64 @@ const OPTIONAL_FEATURES: wgpu::Features = wgpu::Features::TIMESTAMP_QUERY
     .union(wgpu::Features::SHADER_F16);
 
 impl Gpu {
+    /// The limits of a mid-range Android phone: Khronos' Vulkan profile `VP_ANDROID_baseline_2022`
+    /// (KhronosGroup/Vulkan-Profiles, `profiles/VP_ANDROID_baseline_2022.json`, commit 61aa0b2),
+    /// mapped to wgpu's limits the way wgpu-hal 30's Vulkan backend maps a device reporting
+    /// exactly those values (`to_wgpu_limits`), then intersected with
+    /// [`wgpu::Limits::downlevel_defaults`] (GLES 3.1) wherever that is stricter.
+    ///
+    /// | wgpu limit | profile (Vulkan) | downlevel | chosen |
+    /// |---|---|---|---|
+    /// | texture 1D / 2D | maxImageDimension1D/2D/Cube, maxFramebufferWidth 4096 | 2048 | 4096 (1) |
+    /// | texture 3D | maxImageDimension3D 512 | 256 | 256 |
+    /// | texture array layers | maxImageArrayLayers 256 | 256 | 256 |
+    /// | bind groups | maxBoundDescriptorSets 4 | 4 | 4 |
+    /// | dynamic uniform / storage buffers | maxDescriptorSet…Dynamic 8 / 4 | 8 / 4 | 8 / 4 |
+    /// | sampled textures per stage | maxPerStageDescriptorSampledImages 16 | 16 | 16 |
+    /// | samplers per stage | maxPerStageDescriptorSamplers 16 | 16 | 16 |
+    /// | storage buffers per stage | 4, capped by maxFragmentCombinedOutputResources 8 (2) | 4 | 3 |
+    /// | storage textures per stage | 4, capped likewise (2) | 4 | 2 |
+    /// | uniform buffers per stage | maxPerStageDescriptorUniformBuffers 12 | 12 | 12 |
+    /// | uniform binding size | maxUniformBufferRange 16384 | 16 KiB | 16 KiB |
+    /// | storage binding size | maxStorageBufferRange 128 MiB | 128 MiB | 128 MiB |
+    /// | vertex buffers | maxVertexInputBindings 16 | 8 | 8 |
+    /// | vertex attributes | maxVertexInputAttributes 16 | 16 | 16 |
+    /// | vertex stride | maxVertexInputBindingStride 2048 | 2048 | 2048 |
+    /// | inter-stage variables | maxVertexOutputComponents 64 / 4 − 1 | 15 | 15 |
+    /// | uniform / storage offset alignment | 256 / 256 | 256 / 256 | 256 / 256 |
+    /// | color attachments | maxColorAttachments 4, capped likewise (2) | 4 | 3 |
+    /// | color bytes per sample | 3 attachments × 16 | 32 | 32 |
+    /// | workgroup storage | maxComputeSharedMemorySize 16384 | 16352 | 16352 |
+    /// | invocations per workgroup | maxComputeWorkGroupInvocations 128 | 256 | 128 |
+    /// | workgroup size x / y / z | maxComputeWorkGroupSize 128 / 128 / 64 | 256 / 256 / 64 | 128 / 128 / 64 |
+    /// | workgroups per dimension | maxComputeWorkGroupCount 65535 | 65535 | 65535 |
+    /// | immediates (push constants) | maxPushConstantsSize 128 | 0 | 0 (3) |
+    /// | buffer size | — (no maintenance3 in the profile) | 256 MiB | 256 MiB |
+    ///
+    /// (1) 2048 would refuse the swapchain of any phone screen (1080 × 2400 and up); the profile's
+    ///     4096 is what `Limits::using_resolution` is for. (2) wgpu keeps storage textures +
+    ///     storage buffers + color attachments within maxFragmentCombinedOutputResources (8) on
+    ///     every vendor but Intel/NVIDIA/AMD/ImgTec: 2 + 3 + 3. (3) needs `Features::IMMEDIATES`,
+    ///     which dermis does not request. Everything else is the downlevel value.
+    pub const PHONE_LIMITS: wgpu::Limits = wgpu::Limits {
+        max_texture_dimension_1d: 4096,
+        max_texture_dimension_2d: 4096,
+        max_storage_buffers_per_shader_stage: 3,
+        max_storage_textures_per_shader_stage: 2,
+        max_color_attachments: 3,
+        max_compute_invocations_per_workgroup: 128,
+        max_compute_workgroup_size_x: 128,
+        max_compute_workgroup_size_y: 128,
+        ..wgpu::Limits::downlevel_defaults()
+    };
+
+    /// The limits dermis requests from an adapter offering `adapter`: [`Self::PHONE_LIMITS`],
+    /// lowered wherever the adapter has less (a GLES 3.0 phone without storage buffers still
+    /// gets a device, and wgpu validates against what it really has).
+    pub fn phone_limits(adapter: &wgpu::Limits) -> wgpu::Limits {
+        Self::PHONE_LIMITS.or_worse_values_from(adapter)
+    }
+
     /// An instance honouring `WGPU_BACKEND` etc. (Vulkan and GL compiled in).
     pub fn instance() -> wgpu::Instance {
         wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle().with_env())
@@ -72,9 +130,8 @@ impl Gpu {
             info.driver_info
         );
         let features = adapter.features() & OPTIONAL_FEATURES;
-        // Whatever the adapter offers; the renderer itself stays inside GLES3 limits
-        // (16 KiB uniform blocks, no storage buffers in the render path).
-        let limits = adapter.limits();
+        // A mid-range phone's limits, not the machine's: what runs here runs on the phone.
+        let limits = Self::phone_limits(&adapter.limits());
         let (device, queue) = adapter
             .request_device(&wgpu::DeviceDescriptor {
                 label: Some("dermis"),

@@ -6,7 +6,9 @@
 //! reach such a model has no such pass, pipeline or target.
 
 mod character;
+pub mod conformance;
 mod counters;
+mod driver;
 mod frame;
 mod gpu;
 mod layouts;
@@ -14,8 +16,11 @@ mod mesh;
 mod offscreen;
 mod pipelines;
 mod props;
+mod readback;
 mod renderer;
+pub mod rig;
 mod sss_pass;
+mod surface;
 mod targets;
 mod texture;
 mod timer;
@@ -23,14 +28,18 @@ pub mod ui;
 
 pub use character::CharacterGpu;
 pub use counters::LiveObjects;
+pub use driver::{Allocs, Clock, FrameDriver, FrameOutput, FrameTimes, FrameWork, Output};
 pub use frame::{FrameUniform, Light};
 pub use gpu::{Gpu, GpuError};
 pub use offscreen::{f16_to_f32, Offscreen, RgbaImage, OFFSCREEN_FORMAT};
 pub use pipelines::{build_shader_source, CharacterPipelines, PipelineSet};
 pub use props::{PropInstance, PropKind};
+pub use readback::{read_buffer, read_mapped};
 pub use renderer::{DrawSet, FrameView, RenderStats, Renderer};
+pub use rig::{key_light, CharacterBound, CHARACTER, EXPOSURE, KEY_LIGHT_OFFSET};
 pub use sss_pass::SPLIT_FORMAT;
+pub use surface::{choose_format, SurfaceOptions, SurfaceTarget};
 pub use targets::{Targets, DEPTH_FORMAT, MSAA_SAMPLES};
 pub use texture::f32_to_f16;
-pub use timer::PassTimer;
+pub use timer::{PassTimer, TimerRing};
 pub use ui::{ui_shader_source, ui_vertex_layout, UiRenderer};

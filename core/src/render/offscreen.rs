@@ -1,5 +1,6 @@
 //! Rendering into a texture and reading it back (the `render` command, tests, benches).
 
+use super::readback::read_mapped;
 use super::targets::Targets;
 use super::Gpu;
 
@@ -101,23 +102,17 @@ impl Offscreen {
 
     /// Waits for the GPU and returns the tightly packed texel bytes.
     pub fn read_bytes(&self, gpu: &Gpu) -> Vec<u8> {
-        let slice = self.readback.slice(..);
-        slice.map_async(wgpu::MapMode::Read, |_| {});
-        gpu.wait();
         let (w, h) = (self.targets.width, self.targets.height);
         let row_bytes = (w * self.bytes_per_pixel) as usize;
-        let mut bytes = Vec::with_capacity(row_bytes * h as usize);
-        {
-            let data = slice
-                .get_mapped_range()
-                .expect("readback buffer was mapped above");
+        read_mapped(&gpu.device, &self.readback, |data| {
+            let mut bytes = Vec::with_capacity(row_bytes * h as usize);
             for row in 0..h {
                 let start = (row * self.padded_row) as usize;
                 bytes.extend_from_slice(&data[start..start + row_bytes]);
             }
-        }
-        self.readback.unmap();
-        bytes
+            bytes
+        })
+        .expect("readback buffer was mapped above")
     }
 
     /// Raw RGBA16F radiance as f32 (for `Rgba16Float` targets).

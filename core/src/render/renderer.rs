@@ -135,6 +135,22 @@ impl Renderer {
         Ok(())
     }
 
+    /// Uploads a scene: the character with `material`'s constants and every prop model (the
+    /// one scene upload of stills, the demo and the game).
+    pub fn load_scene(
+        &mut self,
+        gpu: &Gpu,
+        character: &Model,
+        props: &[(PropKind, Model)],
+        material: &Material,
+    ) -> Result<(), String> {
+        self.load_character(gpu, character, material)?;
+        for (kind, model) in props {
+            self.load_prop(gpu, *kind, model);
+        }
+        Ok(())
+    }
+
     /// Uploads a prop model for `kind`.
     pub fn load_prop(&mut self, gpu: &Gpu, kind: PropKind, model: &Model) {
         self.props.retain(|p| p.kind != kind);

@@ -2,7 +2,7 @@
 //! Always), the skin atlas texture, a fixed-capacity vertex buffer created once and one draw
 //! call. It is meant to be drawn last inside the frame's single MSAA pass.
 //!
-//! ```ignore
+//! ```text
 //! // load
 //! let (rgba, w, h) = dermis_core::ui::atlas_rgba();
 //! let mut ui_gpu = UiRenderer::new(&device, &queue, format, MSAA_SAMPLES, &rgba, w, h);

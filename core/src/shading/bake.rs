@@ -54,6 +54,10 @@ pub struct Budget {
     pub max_events: u64,
     /// Fewest photons a table is measured with, whatever the event caps.
     pub min_photons: u64,
+    /// Photons per channel for each sphere row of the pre-integration LUT …
+    pub sphere: u64,
+    /// … and the event cap of each such run.
+    pub sphere_events: u64,
 }
 
 /// What the renderer bakes at material load.
@@ -65,6 +69,8 @@ pub const DEFAULT_BUDGET: Budget = Budget {
     events: 1_500_000,
     max_events: 200_000,
     min_photons: 500,
+    sphere: 200_000,
+    sphere_events: 20_000_000,
 };
 
 /// Strips on each side of the edge for the forward shift.
@@ -80,6 +86,8 @@ pub const QUICK_BUDGET: Budget = Budget {
     events: 10_000,
     max_events: 2_000,
     min_photons: 20,
+    sphere: 200,
+    sphere_events: 20_000,
 };
 
 #[derive(Clone, Debug, PartialEq)]
@@ -170,7 +178,7 @@ pub fn oblique_node(k: usize) -> f64 {
     x * x
 }
 
-fn medium(m: &Material, c: usize) -> Medium {
+pub fn medium(m: &Material, c: usize) -> Medium {
     Medium::new(m.sigma_a[c], m.sigma_s_prime[c], m.g, m.eta)
 }
 

@@ -9,8 +9,8 @@
 //! Eq. 3 as printed divides the virtual-source term by an extra σ'_t (wrong units): that is
 //! the `dipole-printed` variant.
 
-use super::conformance::{rows, Pixel};
-use super::{fresnel, registry::ModelParams, units, Material};
+use super::pixel::{rows, Pixel};
+use super::{fresnel, uniform::ModelParams, units, Material};
 use glam::DVec3;
 
 /// What `dipole.wgsl` reads: everything that does not vary per pixel.

@@ -3,7 +3,9 @@
 //! everything that does not vary per pixel, and an f64 reference of the per-pixel maths.
 //!
 //! [`ShadingModel`] is the one registry of model names, used by the CLI, the UI, the renderer
-//! and every JSON output.
+//! and every JSON output; its table ([`Descriptor`], `registry.rs`) holds one row per model.
+//! Adding a model is one Rust file here, one WGSL file of the same name in `shaders/` and one
+//! row in that table.
 
 pub mod bake;
 pub mod burley;
@@ -12,14 +14,17 @@ pub mod dipole;
 pub mod fresnel;
 pub mod material;
 pub mod oss;
+pub mod pixel;
 pub mod prediction;
 pub mod preintegrated;
 mod registry;
 pub mod subsurface;
 pub mod tabulated;
 pub mod transport;
+mod uniform;
 pub mod units;
 pub mod ward;
 
 pub use material::Material;
-pub use registry::{Effects, ModelParams, ShadingModel, MODEL_PARAM_ROWS};
+pub use registry::{Descriptor, Effects, ShadingModel};
+pub use uniform::{ModelParams, MODEL_PARAM_ROWS};

@@ -22,8 +22,8 @@
 //!
 //! So 0 ≤ f_d ≤ (1 − F_dr)(1 + F_dr) < 1.
 
-use super::conformance::{rows, Pixel};
-use super::{fresnel, registry::ModelParams, units, ward, Material};
+use super::pixel::{rows, Pixel};
+use super::{fresnel, uniform::ModelParams, units, ward, Material};
 use glam::DVec3;
 
 /// ρ_d, ρ_s, ρ_ts for skin (§3.3).

@@ -7,47 +7,46 @@
 //! semi-infinite one; OSS is a layer model, f_d(d). For the semi-infinite medium OSS is
 //! evaluated at [`OSS_SEMI_INFINITE_MM`] (its printed form has no finite limit).
 
-use super::{bake, burley, dipole, fresnel, oss, Material, ShadingModel};
+use super::{bake, dipole, fresnel, oss, Material, ShadingModel};
 
 /// Depth at which OSS stands in for a semi-infinite medium (mm).
 pub const OSS_SEMI_INFINITE_MM: f64 = 100.0;
 
 /// Total diffuse reflectance predicted by `model` for `material`, for a slab of `slab_mm`
-/// millimetres or (None) a semi-infinite medium.
+/// millimetres or (None) a semi-infinite medium (the model's row of the registry table).
 pub fn total_reflectance(
     model: ShadingModel,
     material: &Material,
     slab_mm: Option<f64>,
 ) -> [f64; 3] {
-    match model {
-        ShadingModel::Ward | ShadingModel::WardPrinted | ShadingModel::Dipole => {
-            dipole::total_reflectance(material)
+    (model.descriptor().total_reflectance)(material, slab_mm)
+}
+
+/// The printed dipole's profile integrated numerically (it has no closed form).
+pub fn dipole_printed(material: &Material) -> [f64; 3] {
+    let p = dipole::Params::new(material);
+    std::array::from_fn(|c| integrate_radial(|r| p.profile_printed(c, r)))
+}
+
+/// OSS's layer reflectance f_d(d), at [`OSS_SEMI_INFINITE_MM`] for a semi-infinite medium.
+pub fn oss(material: &Material, slab_mm: Option<f64>, stable: bool) -> [f64; 3] {
+    let p = oss::Params::new(material);
+    let d = slab_mm.unwrap_or(OSS_SEMI_INFINITE_MM);
+    std::array::from_fn(|c| {
+        if stable {
+            p.f_d_stable(c, d)
+        } else {
+            p.f_d(c, d)
         }
-        ShadingModel::DipolePrinted => {
-            let p = dipole::Params::new(material);
-            std::array::from_fn(|c| integrate_radial(|r| p.profile_printed(c, r)))
-        }
-        ShadingModel::Oss | ShadingModel::OssStable => {
-            let p = oss::Params::new(material);
-            let d = slab_mm.unwrap_or(OSS_SEMI_INFINITE_MM);
-            let stable = model == ShadingModel::OssStable;
-            std::array::from_fn(|c| {
-                if stable {
-                    p.f_d_stable(c, d)
-                } else {
-                    p.f_d(c, d)
-                }
-            })
-        }
-        ShadingModel::Burley => burley::surface_albedo(material),
-        // The measured kernel's total, per entered power; a slab's reflectance is not in the
-        // tables (their translucency is the light through it).
-        ShadingModel::Tabulated | ShadingModel::Preintegrated => {
-            let t = bake::for_material(material).reflectance();
-            let entry = fresnel::transmittance_shader(material.eta, 1.0);
-            t.map(|r| r / entry)
-        }
-    }
+    })
+}
+
+/// The measured kernel's total, per entered power; a slab's reflectance is not in the
+/// tables (their translucency is the light through it).
+pub fn measured(material: &Material) -> [f64; 3] {
+    let t = bake::for_material(material).reflectance();
+    let entry = fresnel::transmittance_shader(material.eta, 1.0);
+    t.map(|r| r / entry)
 }
 
 /// ∫₀^∞ 2πr f(r) dr by the substitution r = e^u (profiles span many decades).

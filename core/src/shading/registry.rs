@@ -2,9 +2,14 @@
 
 use std::sync::Arc;
 
+use glam::DVec3;
+
+use super::bake::{self, Bake};
+use super::pixel::Pixel;
 use super::preintegrated::{self, Lut};
-use super::subsurface::Kernel;
-use super::{bake, burley, dipole, oss, tabulated, ward, Material};
+use super::subsurface::{self, Kernel};
+use super::uniform::ModelParams;
+use super::{burley, dipole, oss, prediction, tabulated, ward, Material};
 use crate::shader::ShaderDefs;
 
 /// A selectable character shading model (and the paper's printed variants).
@@ -52,25 +57,228 @@ pub struct Effects {
     pub lut: bool,
 }
 
-/// The uniform block a model's shader reads at `@group(1) @binding(0)`: 32 vec4s, laid out
-/// by each model's own `Params` struct (see `ward.rs`, `dipole.rs`, `oss.rs`).
-#[repr(C, align(16))]
-#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
-pub struct ModelParams(pub [[f32; 4]; MODEL_PARAM_ROWS]);
-
-/// Rows (vec4) of [`ModelParams`].
-pub const MODEL_PARAM_ROWS: usize = 32;
-
-impl ModelParams {
-    pub const SIZE: u64 = std::mem::size_of::<Self>() as u64;
-
-    /// Packs a model's vec4 rows, zero-filling the rest.
-    pub fn from_rows(rows: &[[f32; 4]]) -> Self {
-        let mut p = [[0.0; 4]; MODEL_PARAM_ROWS];
-        p[..rows.len()].copy_from_slice(rows);
-        Self(p)
-    }
+/// Everything the engine knows about one model: one row of [`TABLE`]. Adding a model is a
+/// Rust file in `shading/` (its parameters, precompute and f64 reference), a WGSL file of the
+/// same name in `shaders/`, a variant of [`ShadingModel`] and a row here.
+pub struct Descriptor {
+    pub model: ShadingModel,
+    /// The registry name (CLI, UI, JSON).
+    pub name: &'static str,
+    /// A short human label.
+    pub label: &'static str,
+    /// The WGSL module (file in `shaders/`, and Rust file in `shading/`) implementing it.
+    pub module: &'static str,
+    /// The composition flag selecting this variant inside the module, if any.
+    pub variant: Option<&'static str>,
+    /// What its shader computes.
+    pub effects: Effects,
+    /// CPU-side precompute of the uniform for a material.
+    pub params: fn(&Material) -> ModelParams,
+    /// The same from measured tables (models that read them).
+    pub params_from: Option<fn(&Bake, &Material) -> ModelParams>,
+    /// The kernel the screen-space pass spreads its irradiance with (screen-space models).
+    pub kernel: Option<fn(&Material) -> Kernel>,
+    /// The pre-integrated LUT it samples (LUT models).
+    pub lut: Option<fn(&Material) -> Arc<Lut>>,
+    /// f64 reference of the shader's `shade` (LUT models: the flat-ground limit without it).
+    pub shade: fn(&ModelParams, &Pixel) -> DVec3,
+    /// f64 reference of the probed sub-function at x (see `conformance::reference_probe`).
+    pub probe: fn(&ModelParams, &Pixel, f64) -> DVec3,
+    /// Its prediction of the total diffuse reflectance, semi-infinite (None) or of a slab
+    /// (mm) — `dermis sss`.
+    pub total_reflectance: fn(&Material, Option<f64>) -> [f64; 3],
 }
+
+const NONE: Effects = Effects {
+    subsurface: false,
+    translucency: false,
+    specular: false,
+    texture: false,
+    screen_space: false,
+    lut: false,
+};
+const WARD: Effects = Effects {
+    specular: true,
+    texture: true,
+    ..NONE
+};
+const DIPOLE: Effects = Effects {
+    subsurface: true,
+    ..NONE
+};
+const OSS: Effects = Effects {
+    subsurface: true,
+    translucency: true,
+    specular: true,
+    texture: true,
+    ..NONE
+};
+
+fn dipole_semi(m: &Material, _: Option<f64>) -> [f64; 3] {
+    dipole::total_reflectance(m)
+}
+
+fn measured(m: &Material, _: Option<f64>) -> [f64; 3] {
+    prediction::measured(m)
+}
+
+/// The spatial models' per-pixel part and its probed oblique table.
+fn spatial_probe(p: &ModelParams, _: &Pixel, x: f64) -> DVec3 {
+    subsurface::oblique_packed(p, x / (1.0 + x))
+}
+
+/// One row per model, in [`ShadingModel::ALL`] order.
+pub static TABLE: [Descriptor; 9] = [
+    Descriptor {
+        model: ShadingModel::Ward,
+        name: "ward",
+        label: "Ward BRDF",
+        module: "ward",
+        variant: None,
+        effects: WARD,
+        params: |m| ward::Params::new(m, &ward::Lobe::SKIN).pack(),
+        params_from: None,
+        kernel: None,
+        lut: None,
+        shade: |p, px| ward::shade(p, false, px),
+        probe: |p, px, _| ward::probe(p, false, px),
+        total_reflectance: dipole_semi,
+    },
+    Descriptor {
+        model: ShadingModel::WardPrinted,
+        name: "ward-printed",
+        label: "Ward BRDF (as printed)",
+        module: "ward",
+        variant: Some("WARD_PRINTED"),
+        effects: WARD,
+        params: |m| ward::Params::new(m, &ward::Lobe::SKIN).pack(),
+        params_from: None,
+        kernel: None,
+        lut: None,
+        shade: |p, px| ward::shade(p, true, px),
+        probe: |p, px, _| ward::probe(p, true, px),
+        total_reflectance: dipole_semi,
+    },
+    Descriptor {
+        model: ShadingModel::Dipole,
+        name: "dipole",
+        label: "Scaled BSSRDF",
+        module: "dipole",
+        variant: None,
+        effects: DIPOLE,
+        params: |m| dipole::Params::new(m).pack(),
+        params_from: None,
+        kernel: None,
+        lut: None,
+        shade: |p, px| dipole::shade(p, false, px),
+        probe: |p, _, x| dipole::profile_packed(p, false, x),
+        total_reflectance: dipole_semi,
+    },
+    Descriptor {
+        model: ShadingModel::DipolePrinted,
+        name: "dipole-printed",
+        label: "Scaled BSSRDF (as printed)",
+        module: "dipole",
+        variant: Some("DIPOLE_PRINTED"),
+        effects: DIPOLE,
+        params: |m| dipole::Params::new(m).pack(),
+        params_from: None,
+        kernel: None,
+        lut: None,
+        shade: |p, px| dipole::shade(p, true, px),
+        probe: |p, _, x| dipole::profile_packed(p, true, x),
+        total_reflectance: |m, _| prediction::dipole_printed(m),
+    },
+    Descriptor {
+        model: ShadingModel::Oss,
+        name: "oss",
+        label: "OSS",
+        module: "oss",
+        variant: None,
+        effects: OSS,
+        params: |m| oss::Params::new(m).pack(),
+        params_from: None,
+        kernel: None,
+        lut: None,
+        shade: |p, px| oss::shade(p, false, px),
+        probe: |p, _, x| oss::colour_packed(p, false, x),
+        total_reflectance: |m, slab| prediction::oss(m, slab, false),
+    },
+    Descriptor {
+        model: ShadingModel::OssStable,
+        name: "oss-stable",
+        label: "OSS (stable)",
+        module: "oss",
+        variant: Some("OSS_STABLE"),
+        effects: OSS,
+        params: |m| oss::Params::new(m).pack(),
+        params_from: None,
+        kernel: None,
+        lut: None,
+        shade: |p, px| oss::shade(p, true, px),
+        probe: |p, _, x| oss::colour_packed(p, true, x),
+        total_reflectance: |m, slab| prediction::oss(m, slab, true),
+    },
+    Descriptor {
+        model: ShadingModel::Burley,
+        name: "burley",
+        label: "Burley diffusion",
+        module: "burley",
+        variant: None,
+        effects: Effects {
+            subsurface: true,
+            screen_space: true,
+            ..NONE
+        },
+        params: |m| burley::params(m).pack(),
+        params_from: None,
+        kernel: Some(burley::kernel),
+        lut: None,
+        shade: subsurface::local,
+        probe: spatial_probe,
+        total_reflectance: |m, _| burley::surface_albedo(m),
+    },
+    Descriptor {
+        model: ShadingModel::Tabulated,
+        name: "tabulated",
+        label: "Measured profile",
+        module: "tabulated",
+        variant: None,
+        effects: Effects {
+            subsurface: true,
+            translucency: true,
+            screen_space: true,
+            ..NONE
+        },
+        params: |m| tabulated::params(m).pack(),
+        params_from: Some(|b, m| tabulated::params_from(b, m).pack()),
+        kernel: Some(tabulated::kernel),
+        lut: None,
+        shade: subsurface::local,
+        probe: spatial_probe,
+        total_reflectance: measured,
+    },
+    Descriptor {
+        model: ShadingModel::Preintegrated,
+        name: "preintegrated",
+        label: "Pre-integrated",
+        module: "preintegrated",
+        variant: None,
+        effects: Effects {
+            subsurface: true,
+            translucency: true,
+            lut: true,
+            ..NONE
+        },
+        params: |m| preintegrated::params(m).pack(),
+        params_from: Some(|b, m| preintegrated::params_from(b, m).pack()),
+        kernel: None,
+        lut: Some(preintegrated::lut),
+        shade: subsurface::local,
+        probe: spatial_probe,
+        total_reflectance: measured,
+    },
+];
 
 impl ShadingModel {
     /// Every model, in menu order.
@@ -90,34 +298,19 @@ impl ShadingModel {
     pub const PAPER: [ShadingModel; 3] =
         [ShadingModel::Ward, ShadingModel::Dipole, ShadingModel::Oss];
 
+    /// This model's row of [`TABLE`].
+    pub fn descriptor(self) -> &'static Descriptor {
+        &TABLE[self as usize]
+    }
+
     /// The registry name (CLI, UI, JSON).
     pub fn name(self) -> &'static str {
-        match self {
-            Self::Ward => "ward",
-            Self::WardPrinted => "ward-printed",
-            Self::Dipole => "dipole",
-            Self::DipolePrinted => "dipole-printed",
-            Self::Oss => "oss",
-            Self::OssStable => "oss-stable",
-            Self::Burley => "burley",
-            Self::Tabulated => "tabulated",
-            Self::Preintegrated => "preintegrated",
-        }
+        self.descriptor().name
     }
 
     /// A short human label.
     pub fn label(self) -> &'static str {
-        match self {
-            Self::Ward => "Ward BRDF",
-            Self::WardPrinted => "Ward BRDF (as printed)",
-            Self::Dipole => "Scaled BSSRDF",
-            Self::DipolePrinted => "Scaled BSSRDF (as printed)",
-            Self::Oss => "OSS",
-            Self::OssStable => "OSS (stable)",
-            Self::Burley => "Burley diffusion",
-            Self::Tabulated => "Measured profile",
-            Self::Preintegrated => "Pre-integrated",
-        }
+        self.descriptor().label
     }
 
     pub fn from_name(name: &str) -> Option<Self> {
@@ -131,83 +324,32 @@ impl ShadingModel {
 
     /// The effects this model's shader computes.
     pub fn effects(self) -> Effects {
-        let no = Effects {
-            subsurface: false,
-            translucency: false,
-            specular: false,
-            texture: false,
-            screen_space: false,
-            lut: false,
-        };
-        match self {
-            Self::Ward | Self::WardPrinted => Effects {
-                specular: true,
-                texture: true,
-                ..no
-            },
-            Self::Dipole | Self::DipolePrinted => Effects {
-                subsurface: true,
-                ..no
-            },
-            Self::Oss | Self::OssStable => Effects {
-                subsurface: true,
-                translucency: true,
-                specular: true,
-                texture: true,
-                ..no
-            },
-            Self::Burley => Effects {
-                subsurface: true,
-                screen_space: true,
-                ..no
-            },
-            Self::Tabulated => Effects {
-                subsurface: true,
-                translucency: true,
-                screen_space: true,
-                ..no
-            },
-            Self::Preintegrated => Effects {
-                subsurface: true,
-                translucency: true,
-                lut: true,
-                ..no
-            },
-        }
+        self.descriptor().effects
     }
 
     /// The WGSL module (file in `shaders/`) implementing the model.
     pub fn module(self) -> &'static str {
-        match self {
-            Self::Ward | Self::WardPrinted => "ward",
-            Self::Dipole | Self::DipolePrinted => "dipole",
-            Self::Oss | Self::OssStable => "oss",
-            Self::Burley => "burley",
-            Self::Tabulated => "tabulated",
-            Self::Preintegrated => "preintegrated",
-        }
+        self.descriptor().module
     }
 
-    /// Composition flags selecting the variant inside the model's file.
+    /// Composition flags selecting the variant inside the model's file: its own variant
+    /// flag, else the flags its effects imply.
     pub fn defs(self) -> ShaderDefs {
-        let defs = ShaderDefs::new().alias("shading_model", self.module());
-        match self {
-            Self::WardPrinted => defs.flag("WARD_PRINTED"),
-            Self::DipolePrinted => defs.flag("DIPOLE_PRINTED"),
-            Self::OssStable => defs.flag("OSS_STABLE"),
-            _ => {
-                let e = self.effects();
-                let defs = if e.screen_space {
-                    defs.flag("SCREEN_SPACE")
-                } else {
-                    defs
-                };
-                if e.subsurface && e.translucency {
-                    defs.flag("TRANSLUCENCY")
-                } else {
-                    defs
-                }
-            }
+        let d = self.descriptor();
+        let defs = ShaderDefs::new().alias("shading_model", d.module);
+        if let Some(flag) = d.variant {
+            return defs.flag(flag);
+        }
+        let e = d.effects;
+        let defs = if e.screen_space {
+            defs.flag("SCREEN_SPACE")
+        } else {
+            defs
+        };
+        if e.subsurface && e.translucency {
+            defs.flag("TRANSLUCENCY")
+        } else {
+            defs
         }
     }
 
@@ -219,44 +361,27 @@ impl ShadingModel {
 
     /// CPU-side precompute of the model's constants for `material`.
     pub fn params(self, material: &Material) -> ModelParams {
-        match self {
-            Self::Ward | Self::WardPrinted => ward::Params::new(material, &ward::Lobe::SKIN).pack(),
-            Self::Dipole | Self::DipolePrinted => dipole::Params::new(material).pack(),
-            Self::Oss | Self::OssStable => oss::Params::new(material).pack(),
-            Self::Burley => burley::params(material).pack(),
-            Self::Tabulated => tabulated::params(material).pack(),
-            Self::Preintegrated => preintegrated::params(material).pack(),
-        }
+        (self.descriptor().params)(material)
     }
 
     /// [`Self::params`] with the measured tables of `material` baked within `budget` (tests
     /// that run the per-pixel code over many materials use a quick one).
     pub fn params_with(self, material: &Material, budget: bake::Budget) -> ModelParams {
         let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
-        match self {
-            Self::Tabulated => {
-                tabulated::params_from(&bake::measure(material, budget, threads), material).pack()
-            }
-            Self::Preintegrated => {
-                preintegrated::params_from(&bake::measure(material, budget, threads), material)
-                    .pack()
-            }
-            _ => self.params(material),
+        match self.descriptor().params_from {
+            Some(from) => from(&bake::measure(material, budget, threads), material),
+            None => self.params(material),
         }
     }
 
     /// The kernel the screen-space pass spreads this model's irradiance with.
     pub fn kernel(self, material: &Material) -> Option<Kernel> {
-        match self {
-            Self::Burley => Some(burley::kernel(material)),
-            Self::Tabulated => Some(tabulated::kernel(material)),
-            _ => None,
-        }
+        self.descriptor().kernel.map(|k| k(material))
     }
 
     /// The pre-integrated LUT this model samples.
     pub fn lut(self, material: &Material) -> Option<Arc<Lut>> {
-        (self == Self::Preintegrated).then(|| preintegrated::lut(material))
+        self.descriptor().lut.map(|l| l(material))
     }
 }
 
@@ -271,5 +396,50 @@ impl std::str::FromStr for ShadingModel {
     fn from_str(s: &str) -> Result<Self, String> {
         Self::from_name(s)
             .ok_or_else(|| format!("unknown shading model `{s}` (known: {})", Self::names()))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::shading::material::SKIN1;
+
+    #[test]
+    fn every_table_row_is_complete_and_in_order() {
+        let root = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
+        let mut names = std::collections::HashSet::new();
+        for (i, m) in ShadingModel::ALL.iter().enumerate() {
+            let d = m.descriptor();
+            assert_eq!(d.model, *m, "row {i} is out of order");
+            assert!(names.insert(d.name), "{} twice", d.name);
+            assert_eq!(ShadingModel::from_name(d.name), Some(*m));
+            assert!(!d.label.is_empty());
+            // The WGSL and the Rust twin by name.
+            let wgsl = format!("{root}/shaders/{}.wgsl", d.module);
+            let rust = format!("{root}/core/src/shading/{}.rs", d.module);
+            assert!(std::path::Path::new(&wgsl).is_file(), "{wgsl}");
+            assert!(std::path::Path::new(&rust).is_file(), "{rust}");
+            if let Some(flag) = d.variant {
+                // The flag is read by the module or a module it imports.
+                let shaders = std::fs::read_dir(format!("{root}/shaders")).expect("shaders/");
+                let used = shaders.flatten().any(|e| {
+                    std::fs::read_to_string(e.path())
+                        .is_ok_and(|t| t.contains(&format!("#ifdef {flag}")))
+                });
+                assert!(used, "no shader reads {flag}");
+            }
+            // Each effect has what it needs.
+            assert_eq!(d.effects.screen_space, d.kernel.is_some(), "{}", d.name);
+            assert_eq!(d.effects.lut, d.lut.is_some(), "{}", d.name);
+            // The functions run and give finite values.
+            let p = (d.params)(&SKIN1);
+            assert!(p.0.iter().flatten().all(|v| v.is_finite()), "{}", d.name);
+            let px = Pixel::new(DVec3::new(0.3, 0.2, 0.9).normalize(), DVec3::Z);
+            assert!((d.shade)(&p, &px).is_finite(), "{}", d.name);
+            assert!((d.probe)(&p, &px, 0.5).is_finite(), "{}", d.name);
+            let r = (d.total_reflectance)(&SKIN1, None);
+            // (OSS as printed predicts negative reflectances: finite is all that is asked.)
+            assert!(r.iter().all(|v| v.is_finite()), "{}: {r:?}", d.name);
+        }
     }
 }

@@ -11,8 +11,8 @@
 use glam::DVec3;
 
 use super::bake::{OBLIQUE_NODES, SLAB_FIRST_MM, SLAB_NODES};
-use super::conformance::{rows, Pixel};
-use super::{fresnel, registry::ModelParams, units};
+use super::pixel::{rows, Pixel};
+use super::{fresnel, uniform::ModelParams, units};
 
 /// Rings the screen-space pass can take (`MAX_RINGS` in `sss_pass.wgsl`).
 pub const MAX_RINGS: usize = 24;

@@ -8,9 +8,9 @@
 //! (Jensen's "BRDF approximation" of the BSSRDF) times the texture.
 
 use super::{
-    conformance::{rows, Pixel},
     dipole,
-    registry::ModelParams,
+    pixel::{rows, Pixel},
+    uniform::ModelParams,
     Material,
 };
 use glam::DVec3;
@@ -190,6 +190,17 @@ pub fn shade(p: &ModelParams, printed: bool, px: &Pixel) -> DVec3 {
         + px.irradiance()
             * nl
             * (kd * sliders[0] / std::f64::consts::PI + DVec3::splat(spec * sliders[2]))
+}
+
+/// f64 reference of the probed `ward_specular` for the packed uniform `p` (grey).
+pub fn probe(p: &ModelParams, printed: bool, px: &Pixel) -> DVec3 {
+    let r = rows(p);
+    let lobe = Lobe {
+        rho_s: r[1][0],
+        alpha_x: r[1][1],
+        alpha_y: r[1][2],
+    };
+    DVec3::splat(lobe_specular(px, &lobe, printed))
 }
 
 /// `ward_specular(s, …)` for a pixel, either variant.

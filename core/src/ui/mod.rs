@@ -307,6 +307,39 @@ impl Ui {
         clicked
     }
 
+    /// The rectangles (logical units) of this frame's buttons, in declaration order — for
+    /// layout checks (nothing a player must touch may sit under a display cutout).
+    pub fn button_rects(&self) -> impl Iterator<Item = Rect> + '_ {
+        self.cmds.iter().filter_map(|c| match c {
+            Cmd::Button { rect, .. } => Some(*rect),
+            _ => None,
+        })
+    }
+
+    /// This frame's panels (logical units), in declaration order.
+    pub fn panel_rects(&self) -> impl Iterator<Item = Rect> + '_ {
+        self.cmds.iter().filter_map(|c| match c {
+            Cmd::Panel { rect } => Some(*rect),
+            _ => None,
+        })
+    }
+
+    /// This frame's labels with the rectangle their text covers (logical units).
+    pub fn label_rects(&self) -> impl Iterator<Item = (&str, Rect)> + '_ {
+        self.cmds.iter().filter_map(|c| match c {
+            Cmd::Label {
+                pos, text, size, ..
+            } => {
+                let t = &self.text[text.start as usize..text.end as usize];
+                Some((
+                    t,
+                    Rect::new(pos[0], pos[1], self.text_width(t, *size), *size),
+                ))
+            }
+            _ => None,
+        })
+    }
+
     /// Ends the frame: consumes the queued pointer events and rebuilds the vertices if any
     /// widget's content or layout changed.
     pub fn end(&mut self) {

@@ -41,7 +41,9 @@ pub fn stage_assets(src: &Path, dest: &Path) -> Result<usize, String> {
         entries.sort();
         for p in entries {
             let name = p.file_name().and_then(|n| n.to_str()).unwrap_or("");
-            if name.starts_with('.') || name.ends_with(".md") {
+            // `.lut`: the preintegrated model's tables are compiled into the library
+            // (`include_bytes!`), a copy among the assets would be dead weight.
+            if name.starts_with('.') || name.ends_with(".md") || name.ends_with(".lut") {
                 continue;
             }
             if p.is_dir() {

@@ -4,7 +4,9 @@
 //! `<sysroot>/usr/lib/aarch64-linux-android/<api>/` holding
 //! - `libc.so libm.so libdl.so liblog.so libandroid.so`: stub libraries with the platform
 //!   SONAMEs and symbol version nodes, generated from the symbol table;
-//! - `crtbegin_so.o crtend_so.o`: written by this project (`native/`);
+//! - `crtbegin_so.o crtend_so.o` (shared libraries) and `crtbegin_dynamic.o crtend_android.o`
+//!   (executables: the test binaries of `cargo xtask android-test`): written by this project
+//!   (`native/`);
 //! - `libunwind.a`: Debian's arm64 LLVM libunwind (package `libunwind-19-dev:arm64`, extracted,
 //!   not installed) plus `native/unwind_shims.c` (glibc→bionic shims).
 
@@ -14,9 +16,32 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-const CRTBEGIN: &str = include_str!("native/crtbegin_so.c");
-const CRTEND: &str = include_str!("native/crtend_so.S");
-const SHIMS: &str = include_str!("native/unwind_shims.c");
+/// The sources written to the sysroot's source folder: (file name, text).
+const SOURCES: [(&str, &str); 6] = [
+    ("crt_common.h", include_str!("native/crt_common.h")),
+    ("crtbegin_so.c", include_str!("native/crtbegin_so.c")),
+    ("crtend_so.S", include_str!("native/crtend_so.S")),
+    (
+        "crtbegin_dynamic.c",
+        include_str!("native/crtbegin_dynamic.c"),
+    ),
+    ("crtend_android.S", include_str!("native/crtend_android.S")),
+    ("unwind_shims.c", include_str!("native/unwind_shims.c")),
+];
+
+/// The objects: (source, object, sources it includes, copied into the sysroot's lib folder).
+const OBJECTS: [(&str, &str, &[&str], bool); 5] = [
+    ("crtbegin_so.c", "crtbegin_so.o", &["crt_common.h"], true),
+    ("crtend_so.S", "crtend_so.o", &[], true),
+    (
+        "crtbegin_dynamic.c",
+        "crtbegin_dynamic.o",
+        &["crt_common.h"],
+        true,
+    ),
+    ("crtend_android.S", "crtend_android.o", &[], true),
+    ("unwind_shims.c", "unwind_shims.o", &[], false),
+];
 
 /// The Debian package providing the arm64 `libunwind.a`.
 pub const LIBUNWIND_DEB: &str = "libunwind-19-dev:arm64";
@@ -126,6 +151,39 @@ pub fn stub_sources(table: &[Symbol], library: &str, api: u32) -> (String, Strin
     (asm, script)
 }
 
+/// Builds (when its sources changed) the stub `<library>.so` in `out_dir`: every symbol of
+/// the library at `api` with the platform SONAME and version nodes; the sources go to `src`.
+pub fn stub_library(
+    llvm: &Llvm,
+    table: &[Symbol],
+    library: &str,
+    api: u32,
+    src: &Path,
+    out_dir: &Path,
+) -> Result<PathBuf, String> {
+    let (asm, script) = stub_sources(table, library, api);
+    let asm_path = src.join(format!("{library}.S"));
+    let map_path = src.join(format!("{library}.map"));
+    let out = out_dir.join(format!("{library}.so"));
+    if unchanged(&asm_path, &asm) && unchanged(&map_path, &script) && out.is_file() {
+        return Ok(out);
+    }
+    tools::write(&asm_path, &asm)?;
+    tools::write(&map_path, &script)?;
+    tools::mkdir(out_dir)?;
+    tools::run(
+        Command::new(&llvm.clang)
+            .arg(clang_target(api))
+            .args(["-shared", "-nostdlib", "-fuse-ld=lld"])
+            .arg(format!("-Wl,-soname,{library}.so"))
+            .arg(format!("-Wl,--version-script,{}", map_path.display()))
+            .args(["-Wl,-z,max-page-size=16384", "-o"])
+            .arg(&out)
+            .arg(&asm_path),
+    )?;
+    Ok(out)
+}
+
 fn clang_target(api: u32) -> String {
     format!("--target=aarch64-linux-android{api}")
 }
@@ -148,57 +206,45 @@ pub fn build(
     tools::mkdir(&src)?;
 
     for library in symbols::LIBRARIES {
-        let (asm, script) = stub_sources(table, library, api);
-        let asm_path = src.join(format!("{library}.S"));
-        let map_path = src.join(format!("{library}.map"));
-        let out = lib.join(format!("{library}.so"));
-        if unchanged(&asm_path, &asm) && unchanged(&map_path, &script) && out.is_file() {
-            continue;
-        }
-        tools::write(&asm_path, &asm)?;
-        tools::write(&map_path, &script)?;
-        tools::run(
-            Command::new(&llvm.clang)
-                .arg(clang_target(api))
-                .args(["-shared", "-nostdlib", "-fuse-ld=lld"])
-                .arg(format!("-Wl,-soname,{library}.so"))
-                .arg(format!("-Wl,--version-script,{}", map_path.display()))
-                .args(["-Wl,-z,max-page-size=16384", "-o"])
-                .arg(&out)
-                .arg(&asm_path),
-        )?;
+        stub_library(llvm, table, library, api, &src, &lib)?;
     }
 
-    let objects = [
-        ("crtbegin_so.c", CRTBEGIN, "crtbegin_so.o"),
-        ("crtend_so.S", CRTEND, "crtend_so.o"),
-        ("unwind_shims.c", SHIMS, "unwind_shims.o"),
-    ];
-    for (name, text, obj) in objects {
+    let mut changed = std::collections::BTreeSet::new();
+    for (name, text) in SOURCES {
         let path = src.join(name);
-        let out = src.join(obj);
-        if unchanged(&path, text) && out.is_file() {
-            continue;
+        if !unchanged(&path, text) {
+            tools::write(&path, text)?;
+            changed.insert(name);
         }
-        tools::write(&path, text)?;
-        tools::run(
-            Command::new(&llvm.clang)
-                .arg(clang_target(api))
-                .args([
-                    "-c",
-                    "-O2",
-                    "-fPIC",
-                    "-ffreestanding",
-                    "-fno-stack-protector",
-                ])
-                .arg(format!("-DDERMIS_API_LEVEL={api}"))
-                .arg("-o")
-                .arg(&out)
-                .arg(&path),
-        )?;
     }
-    tools::copy(&src.join("crtbegin_so.o"), &lib.join("crtbegin_so.o"))?;
-    tools::copy(&src.join("crtend_so.o"), &lib.join("crtend_so.o"))?;
+    for (source, obj, includes, in_lib) in OBJECTS {
+        let out = src.join(obj);
+        let stale = changed.contains(source) || includes.iter().any(|i| changed.contains(i));
+        if stale || !out.is_file() {
+            tools::run(
+                Command::new(&llvm.clang)
+                    .arg(clang_target(api))
+                    .args([
+                        "-c",
+                        "-O2",
+                        "-fPIC",
+                        "-ffreestanding",
+                        "-fno-stack-protector",
+                    ])
+                    .arg(format!("-DDERMIS_API_LEVEL={api}"))
+                    .arg("-o")
+                    .arg(&out)
+                    .arg(src.join(source)),
+            )
+            .inspect_err(|_| {
+                // Recompiled next time even if the source text does not change.
+                let _ = std::fs::remove_file(src.join(source));
+            })?;
+        }
+        if in_lib {
+            tools::copy(&out, &lib.join(obj))?;
+        }
+    }
 
     // libunwind.a = Debian's archive + the shims.
     let unwind = lib.join("libunwind.a");

@@ -14,6 +14,10 @@ const LINEAR_MIPMAP_LINEAR: u32 = 9987;
 const REPEAT: u32 = 10497;
 const CLAMP_TO_EDGE: u32 = 33071;
 
+/// The material's `extras` entry declaring that the base-colour texture's alpha is the skin
+/// mask (read by `dermis-core`'s loader; the material stays opaque, so viewers ignore alpha).
+pub const SKIN_MASK_EXTRAS: (&str, &str) = ("dermisSkinMask", "baseColorAlpha");
+
 fn flat3(v: &[Vec3]) -> Vec<f32> {
     v.iter().flat_map(|p| p.to_array()).collect()
 }
@@ -114,10 +118,10 @@ pub fn character_glb(c: &Character, clips: &[Clip], png: &[u8]) -> Vec<u8> {
         "skins": [{ "name": "skeleton", "inverseBindMatrices": ibm, "joints": (1..=sk.len()).collect::<Vec<_>>(), "skeleton": 1 }],
         "animations": animations,
     });
-    merge(
-        &mut doc,
-        material_json("skin", image_view, 0.5, CLAMP_TO_EDGE),
-    );
+    let mut material = material_json("skin", image_view, 0.5, CLAMP_TO_EDGE);
+    let (key, value) = SKIN_MASK_EXTRAS;
+    material["materials"][0]["extras"] = json!({ key: value });
+    merge(&mut doc, material);
     b.finish(doc)
 }
 

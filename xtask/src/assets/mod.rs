@@ -1,7 +1,7 @@
 //! `cargo xtask assets`: regenerates the project's own glTF assets, byte-for-byte reproducibly.
 //!
-//! * `assets/character.glb`: skinned humanoid with `_THICKNESS`, base-colour atlas and the
-//!   `idle`, `run`, `jump` clips.
+//! * `assets/character.glb`: skinned humanoid with `_THICKNESS`, base-colour atlas (alpha: the
+//!   skin mask) and the `idle`, `run`, `jump` clips.
 //! * `assets/props/*.glb`: static props for the runner game.
 
 mod clips;
@@ -22,7 +22,7 @@ use std::path::{Path, PathBuf};
 pub fn generate() -> Vec<(String, Vec<u8>, String)> {
     let character = humanoid::build();
     let rgba = texture::bake(&character.mesh);
-    let png = texture::encode_png(&rgba, texture::SIZE, texture::SIZE);
+    let png = texture::encode_png_rgba(&rgba, texture::SIZE, texture::SIZE);
     let clips = clips::clips();
     let (lo, hi) = character.mesh.bounds();
     let thick = character

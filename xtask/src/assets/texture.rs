@@ -1,9 +1,11 @@
 //! The character's base-colour texture: painted in 3D (bind-pose positions) and baked into the
-//! UV atlas by rasterising the mesh in texture space.
+//! UV atlas by rasterising the mesh in texture space. Its alpha channel is the skin mask (255:
+//! skin, shaded by the subsurface models; 0: cloth, hair, eyes, shaded as cloth); the material
+//! declares it (`export::SKIN_MASK_EXTRAS`) and is opaque, so viewers ignore the alpha.
 
 use super::mesh::Mesh;
 use super::noise::fbm3;
-use glam::{Vec2, Vec3};
+use glam::{Vec2, Vec3, Vec4};
 
 pub const SIZE: u32 = 1024;
 
@@ -43,13 +45,15 @@ fn blob(p: Vec3, c: Vec3, r: Vec3) -> f32 {
     t * t * (3.0 - 2.0 * t)
 }
 
-/// Colour at bind-pose position `p` with normal `n` on the part owning atlas rect `rect`.
-fn paint(p: Vec3, n: Vec3, rect: [f32; 4]) -> Vec3 {
+/// Colour and skin coverage (1: skin) at bind-pose position `p` with normal `n` on the part
+/// owning atlas rect `rect`.
+fn paint(p: Vec3, n: Vec3, rect: [f32; 4]) -> (Vec3, f32) {
     // Mirror-symmetric coordinates (limbs share atlas space between sides).
     let q = Vec3::new(p.x.abs(), p.y, p.z);
     let mottling = fbm3(q * 40.0, 3, 7) - 0.5;
     let broad = fbm3(q * 6.0, 2, 11) - 0.5;
     let mut c = SKIN * (1.0 + 0.10 * broad + 0.05 * mottling);
+    let mut skin = 1.0f32;
     // Warmer, redder areas: cheeks, nose tip, ears, knuckles, elbows, knees, fingertips, toes.
     let mut flush = 0.0f32;
     if rect == atlas::HEAD || rect == atlas::NOSE || rect == atlas::EAR {
@@ -115,6 +119,7 @@ fn paint(p: Vec3, n: Vec3, rect: [f32; 4]) -> Vec3 {
                 let r2 = dx * dx + dy * dy;
                 if r2 < 1.0 {
                     c = Vec3::new(0.93, 0.91, 0.88);
+                    skin = 0.0;
                     let ir = ((q.x - ex) * (q.x - ex) + (q.y - ey) * (q.y - ey)).sqrt();
                     if ir < 0.0055 {
                         c = Vec3::new(0.28, 0.19, 0.12);
@@ -131,6 +136,7 @@ fn paint(p: Vec3, n: Vec3, rect: [f32; 4]) -> Vec3 {
                 let by = q.y - (ey + 0.018 - 0.006 * bx * bx);
                 if bx.abs() < 1.0 && by.abs() < 0.0025 {
                     c = c.lerp(HAIR, 0.85);
+                    skin = 0.15;
                 }
             }
         }
@@ -142,12 +148,14 @@ fn paint(p: Vec3, n: Vec3, rect: [f32; 4]) -> Vec3 {
         if edge > 0.0 {
             let strands = fbm3(Vec3::new(q.x * 300.0, q.y * 60.0, q.z * 300.0), 2, 5);
             c = c.lerp(HAIR * (0.8 + 0.5 * strands), edge);
+            skin = skin.min(1.0 - edge);
         }
     }
     if rect == atlas::TORSO || rect == atlas::LEG {
         let fabric = 0.9 + 0.2 * fbm3(q * 120.0, 2, 9);
         if q.y < 0.995 && !(rect == atlas::LEG && q.y < 0.74) {
             c = SHORTS * fabric;
+            skin = 0.0;
         } else if rect == atlas::TORSO {
             // Tank top: oval armholes and a scooped neckline, deeper at the front.
             let arm = sq((q.x - 0.178) / 0.075) + sq((q.y - 1.43) / 0.15);
@@ -155,16 +163,18 @@ fn paint(p: Vec3, n: Vec3, rect: [f32; 4]) -> Vec3 {
             let neck = sq(q.x / 0.088) + sq((q.y - 1.50) / depth);
             if arm > 1.0 && neck > 1.0 {
                 c = SHIRT * fabric;
+                skin = 0.0;
             }
         }
     }
-    c.clamp(Vec3::ZERO, Vec3::ONE)
+    (c.clamp(Vec3::ZERO, Vec3::ONE), skin)
 }
 
-/// Bakes the atlas for `mesh` (bind pose) and returns RGBA8 pixels.
+/// Bakes the atlas for `mesh` (bind pose) and returns RGBA8 pixels (alpha: the skin mask).
 pub fn bake(mesh: &Mesh) -> Vec<u8> {
     let size = SIZE as usize;
-    let mut col = vec![Vec3::ZERO; size * size];
+    // rgb: colour; w: skin coverage.
+    let mut col = vec![Vec4::ZERO; size * size];
     let mut filled = vec![false; size * size];
     let rects = [
         atlas::TORSO,
@@ -212,7 +222,8 @@ pub fn bake(mesh: &Mesh) -> Vec<u8> {
                     + mesh.normals[idx[1]] * w1
                     + mesh.normals[idx[2]] * w2)
                     .normalize_or_zero();
-                col[y * size + x] = paint(pos, nrm, rect);
+                let (c, skin) = paint(pos, nrm, rect);
+                col[y * size + x] = c.extend(skin);
                 filled[y * size + x] = true;
             }
         }
@@ -226,7 +237,7 @@ pub fn bake(mesh: &Mesh) -> Vec<u8> {
                 if prev[y * size + x] {
                     continue;
                 }
-                let mut sum = Vec3::ZERO;
+                let mut sum = Vec4::ZERO;
                 let mut k = 0;
                 for (dx, dy) in [(-1i32, 0i32), (1, 0), (0, -1), (0, 1)] {
                     let (nx, ny) = (x as i32 + dx, y as i32 + dy);
@@ -249,12 +260,12 @@ pub fn bake(mesh: &Mesh) -> Vec<u8> {
     }
     let mut out = Vec::with_capacity(size * size * 4);
     for (c, f) in col.iter().zip(&filled) {
-        let c = if *f { *c } else { SKIN };
+        let c = if *f { *c } else { SKIN.extend(1.0) };
         out.extend_from_slice(&[
             (c.x * 255.0 + 0.5) as u8,
             (c.y * 255.0 + 0.5) as u8,
             (c.z * 255.0 + 0.5) as u8,
-            255,
+            (c.w.clamp(0.0, 1.0) * 255.0 + 0.5) as u8,
         ]);
     }
     out
@@ -262,15 +273,24 @@ pub fn bake(mesh: &Mesh) -> Vec<u8> {
 
 /// Encodes RGBA8 pixels as a PNG (RGB, no metadata, deterministic).
 pub fn encode_png(rgba: &[u8], w: u32, h: u32) -> Vec<u8> {
-    use image::ImageEncoder;
     let rgb: Vec<u8> = rgba.chunks(4).flat_map(|p| [p[0], p[1], p[2]]).collect();
+    encode(&rgb, w, h, image::ExtendedColorType::Rgb8)
+}
+
+/// Encodes RGBA8 pixels as a PNG keeping the alpha channel (no metadata, deterministic).
+pub fn encode_png_rgba(rgba: &[u8], w: u32, h: u32) -> Vec<u8> {
+    encode(rgba, w, h, image::ExtendedColorType::Rgba8)
+}
+
+fn encode(pixels: &[u8], w: u32, h: u32, colour: image::ExtendedColorType) -> Vec<u8> {
+    use image::ImageEncoder;
     let mut out = Vec::new();
     image::codecs::png::PngEncoder::new_with_quality(
         &mut out,
         image::codecs::png::CompressionType::Best,
         image::codecs::png::FilterType::Adaptive,
     )
-    .write_image(&rgb, w, h, image::ExtendedColorType::Rgb8)
+    .write_image(pixels, w, h, colour)
     .expect("PNG encoding into memory cannot fail");
     out
 }

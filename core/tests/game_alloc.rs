@@ -1,7 +1,8 @@
 //! The game's and the UI's per-frame code allocates nothing in steady state (§4.3 item 1):
 //! game update (bot sampled per tick), prop placement export, animation state, camera
 //! target and building the UI (including frames where the score text changes and the vertex
-//! data is rebuilt). A counting global allocator; one test in this binary, so one thread.
+//! data is rebuilt), with the frame-time overlay on and runs paused and resumed. A counting
+//! global allocator; one test in this binary, so one thread.
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -36,11 +37,23 @@ fn steady_state_frames_allocate_nothing() {
     let bot = Bot::new(77);
     let mut ui = Ui::with_embedded_atlas();
     let mut gui = GameUi::new();
+    gui.show_frame_stats = true;
+    let mut n = 0u64;
+    let mut paused_frames = 0u32;
     let mut settings = Settings::default();
     let mut props: Vec<PropInstance> = Vec::with_capacity(Game::MAX_PROPS);
     let mut checksum = 0.0f32;
     let mut frame = |game: &mut Game, ui: &mut Ui, props: &mut Vec<PropInstance>| {
+        // Now and then a pause of a second (the pause panel is built).
+        n += 1;
+        if n.is_multiple_of(900) {
+            game.pause();
+        } else if n % 900 == 60 {
+            game.resume();
+        }
+        paused_frames += game.is_paused() as u32;
         game.update_with(1.0 / 60.0, |g| bot.decide(g));
+        gui.record_frame_time(1.0 / 60.0 + (n % 7) as f64 * 1e-3, 3.0, 5.0);
         game.props(props);
         let anim = game.anim_state();
         let (cam, _) = game.camera_target();
@@ -76,6 +89,7 @@ fn steady_state_frames_allocate_nothing() {
         screens[game.screen() as usize] = true;
     }
     let allocations = ALLOCATIONS.load(Ordering::Relaxed) - before;
+    assert!(paused_frames > 0, "a run was paused");
     assert!(
         ui.rebuilds() > rebuilds0 + 100,
         "the score changed and the UI was rebuilt"

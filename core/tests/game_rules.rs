@@ -52,6 +52,33 @@ fn running_into_a_tall_obstacle_ends_the_run() {
     let z = g.player_position().z;
     run_ticks(&mut g, 60, &NONE);
     assert_eq!(g.player_position().z, z, "the player stops at game over");
+    assert_stands_clear(&g);
+}
+
+/// At game over the runner stands against what it hit, not inside it.
+fn assert_stands_clear(g: &Game) {
+    let (pmin, pmax) = g.player_aabb();
+    for o in g.obstacles() {
+        let (omin, omax) = o.aabb();
+        let inside = pmin.cmplt(omax).all() && omin.cmplt(pmax).all();
+        assert!(
+            !inside,
+            "player {pmin}–{pmax} inside obstacle {omin}–{omax}"
+        );
+    }
+}
+
+#[test]
+fn a_lane_change_into_an_obstacle_leaves_the_runner_beside_it() {
+    let mut g = playing(1000.0);
+    assert!(g.debug_place_obstacle(ObstacleKind::Tall, 1, 3.0));
+    // Run until the obstacle is alongside, then swerve into it.
+    while g.player_position().z < 3.0 {
+        g.tick(&NONE);
+    }
+    run_ticks(&mut g, TICK_HZ, &press(|i| i.right = true));
+    assert_eq!(g.screen(), Screen::GameOver);
+    assert_stands_clear(&g);
 }
 
 #[test]
@@ -72,6 +99,7 @@ fn jumping_clears_a_low_obstacle_and_standing_does_not() {
     g.debug_place_obstacle(ObstacleKind::Low, 0, 4.0);
     run_ticks(&mut g, TICK_HZ, &NONE);
     assert_eq!(g.screen(), Screen::GameOver);
+    assert_stands_clear(&g);
 }
 
 #[test]

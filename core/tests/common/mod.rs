@@ -1,11 +1,12 @@
-//! Helpers shared by the integration tests.
+//! Helpers shared by dermis-core's integration tests (they also run on Android bionic, under
+//! qemu: `cargo xtask android-test`; the paths below are the host's, compiled in).
 #![allow(dead_code)]
 
 use std::path::PathBuf;
 
 /// The folder holding third-party models, outside the repository.
 pub fn external_dir() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/assets-external")
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../shared/assets-external")
 }
 
 /// A third-party model by its path under `../shared/assets-external` (e.g.
@@ -20,7 +21,10 @@ pub fn external_model(name: &str) -> Option<PathBuf> {
     if std::env::var("CI").map(|v| v == "true").unwrap_or(false) {
         panic!("{why} (CI=true: third-party models are required)");
     }
-    eprintln!("skipping: {why}");
+    // Written to stderr directly: libtest captures `eprintln!` of passing tests, and a skip
+    // the user never sees is a hidden one.
+    use std::io::Write;
+    let _ = writeln!(std::io::stderr(), "skipping: {why}");
     None
 }
 
@@ -33,7 +37,8 @@ pub const EXTERNAL_MODELS: [&str; 5] = [
     "QuaterniusWomanTankTop/WomanTankTop.glb",
 ];
 
-/// The repository's test data folder.
+/// The repository's test data folder, `tests/data` at the workspace root (where the
+/// generators in `tools/hostile-corpus` and `tools/skin-golden` write it).
 pub fn data_dir() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data")
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../tests/data")
 }

@@ -1,0 +1,99 @@
+//! The game as the frame driver runs it: one [`Session`] with its [`GameGpu`], drawn by
+//! [`FrameDriver`](crate::render::FrameDriver) into a window surface or an offscreen target,
+//! the governor fed what each frame cost. Every shell runs the game through
+//! [`GameFrame::run`]: the desktop window, the Android app, `play`, the soak, `bench effects`
+//! and the steady-state test.
+
+use super::{FrameInfo, GameGpu, Session, Viewport};
+use crate::asset::Model;
+use crate::lifecycle::FrameStatus;
+use crate::render::{FrameDriver, FrameOutput, FrameTimes, FrameWork, Gpu, Output, RenderStats};
+use crate::ui::Insets;
+
+/// A hook run after a game frame's passes are recorded: the encoder, the session, the output.
+pub type AfterEncode<'h> = dyn FnMut(&mut wgpu::CommandEncoder, &Session, &FrameOutput<'_>) + 'h;
+
+/// One game frame's inputs and results.
+pub struct GameFrame<'a> {
+    pub session: &'a mut Session,
+    pub gpu: &'a mut GameGpu,
+    pub character: &'a Model,
+    /// Display density (1 on a desktop monitor).
+    pub scale: f32,
+    pub insets: Insets,
+    /// A simulated frame cost (ms) the governor is told instead of the measured one (tests,
+    /// what-if runs); `None`: the measured cost.
+    pub simulated_cost_ms: Option<f64>,
+    /// Called after the frame's passes are recorded, before the submit (screenshots).
+    pub after_encode: Option<&'a mut AfterEncode<'a>>,
+    /// What the last update did.
+    pub info: FrameInfo,
+    /// What the last encode drew.
+    pub stats: RenderStats,
+}
+
+impl<'a> GameFrame<'a> {
+    pub fn new(session: &'a mut Session, gpu: &'a mut GameGpu, character: &'a Model) -> Self {
+        Self {
+            session,
+            gpu,
+            character,
+            scale: 1.0,
+            insets: Insets::default(),
+            simulated_cost_ms: None,
+            after_encode: None,
+            info: FrameInfo::default(),
+            stats: RenderStats::default(),
+        }
+    }
+
+    /// Runs one frame with `driver` into `output` and feeds the session's governor what it
+    /// cost (the larger of its CPU time and the latest GPU time, as the soak measures it),
+    /// and the frame-time overlay its times.
+    pub fn run(
+        &mut self,
+        driver: &mut FrameDriver,
+        gpu: &Gpu,
+        output: Output<'_>,
+    ) -> Result<FrameTimes, FrameStatus> {
+        let times = driver.frame(gpu, output, self)?;
+        let cost = self
+            .simulated_cost_ms
+            .unwrap_or_else(|| driver.cost_ms(&times));
+        self.session.record_frame(cost, times.dt);
+        self.session
+            .gui
+            .record_frame_time(times.dt, times.cpu_ms(), cost);
+        Ok(times)
+    }
+}
+
+impl FrameWork for GameFrame<'_> {
+    fn update(&mut self, dt: f64, width: u32, height: u32) {
+        let viewport = Viewport {
+            width,
+            height,
+            scale: self.scale,
+            insets: self.insets,
+        };
+        self.info = self.session.update(dt as f32, self.character, viewport);
+    }
+
+    fn upload(&mut self, queue: &wgpu::Queue) {
+        self.gpu.upload(queue, self.session, self.character);
+    }
+
+    fn encode(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        output: &FrameOutput<'_>,
+    ) -> RenderStats {
+        self.stats = self
+            .gpu
+            .encode(encoder, output.targets, output.view, self.session);
+        if let Some(hook) = &mut self.after_encode {
+            hook(encoder, self.session, output);
+        }
+        self.stats
+    }
+}

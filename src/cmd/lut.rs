@@ -1,0 +1,43 @@
+//! `dermis lut`: bakes the pre-integrated skin LUTs the core ships
+//! (`assets/sss/<material>-eta<η>.lut`, see `dermis_core::shading::preintegrated`).
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+use dermis_core::reference;
+use dermis_core::shading::bake;
+use dermis_core::shading::material::PRESETS;
+use dermis_core::shading::preintegrated;
+
+#[derive(clap::Args, Debug)]
+pub struct LutArgs {
+    /// Output directory (the shipped tables live in assets/sss).
+    #[arg(long)]
+    pub out: PathBuf,
+}
+
+/// Bakes every preset at its own η and at the reference scenes' η (the tables are
+/// deterministic: the same bytes for any thread count).
+pub fn run(args: LutArgs) -> Result<(), String> {
+    std::fs::create_dir_all(&args.out)
+        .map_err(|e| format!("cannot create {}: {e}", args.out.display()))?;
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let budget = bake::DEFAULT_BUDGET;
+    let materials = PRESETS
+        .iter()
+        .flat_map(|m| [*m, reference::acceptance_material(m)]);
+    for m in materials {
+        let path = args.out.join(preintegrated::file_name(&m));
+        let start = Instant::now();
+        let lut =
+            preintegrated::bake_lut(&bake::measure(&m, budget, threads), &m, &budget, threads);
+        std::fs::write(&path, lut.to_bytes(&m, &budget))
+            .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        println!(
+            "{} ({:.0} s)",
+            path.display(),
+            start.elapsed().as_secs_f64()
+        );
+    }
+    Ok(())
+}

@@ -1,0 +1,211 @@
+//! Materials per region (issue 12): the character's base-colour alpha is a skin mask; the
+//! subsurface models shade the skin, one cloth BRDF shades the rest under every model, and
+//! the albedo texture stays on the cloth. Models without a declared mask are all skin.
+
+use std::path::Path;
+
+use dermis_core::asset::{load_gltf_slice, Model, SKIN_MASK_EXTRAS};
+use dermis_core::render::{Gpu, RgbaImage};
+use dermis_core::scene::SceneAssets;
+use dermis_core::shading::{material::SKIN1, ShadingModel};
+use dermis_core::still::{Shot, StillRenderer};
+
+const W: u32 = 240;
+const H: u32 = 270;
+
+fn gpu() -> Gpu {
+    Gpu::headless().unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn assets_dir() -> std::path::PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("assets")
+}
+
+fn assets() -> SceneAssets {
+    SceneAssets::load(&assets_dir(), None).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// Mid-stride in the run clip, lit from the front right: torso, shorts, arms and legs show.
+fn shot(model: ShadingModel) -> Shot {
+    Shot {
+        clip: 1,
+        time: 0.2,
+        props: false,
+        fill: 0.9,
+        ..Shot::new(model, SKIN1)
+    }
+}
+
+fn rgb(img: &RgbaImage, i: usize) -> [f32; 3] {
+    let p = &img.pixels[i * 4..i * 4 + 3];
+    [p[0] as f32, p[1] as f32, p[2] as f32]
+}
+
+/// The character with its texture replaced by its skin mask (red skin, green cloth), the
+/// mask itself kept: rendered, cloth has no red at all (its BRDF scales the albedo) and skin
+/// (under ward: red diffuse, white specular) little green.
+fn mask_character(model: &Model) -> Model {
+    let mut m = model.clone();
+    for t in &mut m.textures {
+        for px in t.rgba8.chunks_exact_mut(4) {
+            let a = px[3];
+            px[0] = a;
+            px[1] = 255 - a;
+            px[2] = 0;
+        }
+    }
+    m
+}
+
+/// Pixels whose whole 5×5 neighbourhood satisfies `pred` (away from edges and blends).
+fn eroded(img: &RgbaImage, pred: impl Fn([f32; 3]) -> bool) -> Vec<bool> {
+    let (w, h) = (img.width as i64, img.height as i64);
+    let raw: Vec<bool> = (0..(w * h) as usize).map(|i| pred(rgb(img, i))).collect();
+    (0..w * h)
+        .map(|i| {
+            let (x, y) = (i % w, i / w);
+            (-2..=2).all(|dy| {
+                (-2..=2).all(|dx| {
+                    let (nx, ny) = (x + dx, y + dy);
+                    nx >= 0 && ny >= 0 && nx < w && ny < h && raw[(ny * w + nx) as usize]
+                })
+            })
+        })
+        .collect()
+}
+
+fn mean_in(img: &RgbaImage, region: &[bool]) -> [f32; 3] {
+    let mut sum = [0.0f64; 3];
+    let mut n = 0usize;
+    for (i, _) in region.iter().enumerate().filter(|(_, r)| **r) {
+        let c = rgb(img, i);
+        for k in 0..3 {
+            sum[k] += c[k] as f64;
+        }
+        n += 1;
+    }
+    sum.map(|s| (s / n.max(1) as f64) as f32)
+}
+
+/// Mean per-pixel |Δ| (0–255, averaged over channels) inside `region`.
+fn mean_abs_diff(a: &RgbaImage, b: &RgbaImage, region: &[bool]) -> f32 {
+    let mut sum = 0.0f64;
+    let mut n = 0usize;
+    for (i, _) in region.iter().enumerate().filter(|(_, r)| **r) {
+        let (ca, cb) = (rgb(a, i), rgb(b, i));
+        sum += (0..3).map(|k| (ca[k] - cb[k]).abs() as f64).sum::<f64>() / 3.0;
+        n += 1;
+    }
+    (sum / n.max(1) as f64) as f32
+}
+
+#[test]
+fn cloth_is_the_same_under_every_model_and_skin_is_not() {
+    let gpu = gpu();
+    let assets = assets();
+    // The regions, from the mask rendered as albedo.
+    let masked = SceneAssets {
+        character: mask_character(&assets.character),
+        props: Vec::new(),
+    };
+    let mut still = StillRenderer::new(&gpu, &masked, W, H).unwrap();
+    let regions = still
+        .render(&gpu, &masked, &shot(ShadingModel::Ward))
+        .unwrap();
+    let bg = rgb(&regions, 0);
+    let not_bg = |c: [f32; 3]| (0..3).any(|k| (c[k] - bg[k]).abs() > 3.0);
+    let cloth = eroded(&regions, |c| c[0] <= 1.0 && c[1] >= 3.0 && not_bg(c));
+    let skin = eroded(&regions, |c| {
+        c[0] >= 12.0 && c[1] <= 0.5 * c[0] && not_bg(c)
+    });
+    let (n_cloth, n_skin) = (
+        cloth.iter().filter(|x| **x).count(),
+        skin.iter().filter(|x| **x).count(),
+    );
+    println!("cloth {n_cloth} px, skin {n_skin} px");
+    assert!(n_cloth > 1000, "too little cloth in view: {n_cloth} px");
+    assert!(n_skin > 1000, "too little skin in view: {n_skin} px");
+
+    let mut still = StillRenderer::new(&gpu, &assets, W, H).unwrap();
+    let images: Vec<(ShadingModel, RgbaImage)> = ShadingModel::ALL
+        .iter()
+        .map(|&m| (m, still.render(&gpu, &assets, &shot(m)).unwrap()))
+        .collect();
+    let (_, ward) = &images[0];
+    assert_eq!(images[0].0, ShadingModel::Ward);
+    let ward_cloth = mean_in(ward, &cloth);
+    // The texture stays on the cloth: the tank top is teal, the shorts navy; the mean is
+    // bluer than red (skin-coloured cloth would be the opposite).
+    assert!(
+        ward_cloth[2] > ward_cloth[0] * 1.2,
+        "cloth lost its texture: mean {ward_cloth:?}"
+    );
+    for (model, img) in &images {
+        let c = mean_in(img, &cloth);
+        let d_cloth = mean_abs_diff(img, ward, &cloth);
+        let d_skin = mean_abs_diff(img, ward, &skin);
+        println!(
+            "{:>15}: cloth mean {c:.1?} |Δ| vs ward {d_cloth:.2}/255; skin |Δ| vs ward {d_skin:.2}/255",
+            model.name()
+        );
+        assert!(
+            (0..3).all(|k| (c[k] - ward_cloth[k]).abs() <= 1.0) && d_cloth <= 1.0,
+            "{model}: cloth differs from ward's (mean {c:?} vs {ward_cloth:?}, |Δ| {d_cloth:.2}/255)"
+        );
+        if model.effects().subsurface {
+            assert!(
+                d_skin > 4.0,
+                "{model}: skin too close to ward's (|Δ| {d_skin:.2}/255)"
+            );
+        }
+    }
+}
+
+/// The project's character declares its mask and has both skin and cloth texels; the same
+/// file without the declaration loads as all skin and still renders.
+#[test]
+fn a_model_without_a_declared_mask_is_all_skin() {
+    let bytes = std::fs::read(assets_dir().join("character.glb")).unwrap();
+    let no_file = |uri: &str| -> Result<Vec<u8>, String> { Err(format!("no file {uri}")) };
+    let with = load_gltf_slice(&bytes, "character.glb", &no_file).unwrap();
+    let alpha = |m: &Model| -> (usize, usize) {
+        let a = m.textures[0].rgba8.chunks_exact(4).map(|p| p[3]);
+        (
+            a.clone().filter(|&x| x == 0).count(),
+            a.filter(|&x| x == 255).count(),
+        )
+    };
+    let (cloth, skin) = alpha(&with);
+    assert!(
+        cloth > 10_000 && skin > 10_000,
+        "cloth {cloth}, skin {skin}"
+    );
+
+    // Blank the declaration out of the JSON chunk (same length: the GLB stays valid).
+    let (key, value) = SKIN_MASK_EXTRAS;
+    let decl = format!("\"extras\":{{\"{key}\":\"{value}\"}},");
+    let at = bytes
+        .windows(decl.len())
+        .position(|w| w == decl.as_bytes())
+        .expect("the character declares its skin mask in its material's extras");
+    let mut stripped = bytes.clone();
+    stripped[at..at + decl.len()].fill(b' ');
+    let without = load_gltf_slice(&stripped, "no-mask.glb", &no_file).unwrap();
+    let (cloth, _) = alpha(&without);
+    assert_eq!(cloth, 0, "an undeclared alpha must read as skin");
+
+    let gpu = gpu();
+    let assets = SceneAssets {
+        character: without,
+        props: Vec::new(),
+    };
+    let mut still = StillRenderer::new(&gpu, &assets, 120, 135).unwrap();
+    for model in [ShadingModel::Tabulated, ShadingModel::Ward] {
+        let img = still.render(&gpu, &assets, &shot(model)).unwrap();
+        let bg = rgb(&img, 0);
+        let drawn = (0..(img.width * img.height) as usize)
+            .filter(|&i| (0..3).any(|k| (rgb(&img, i)[k] - bg[k]).abs() > 3.0))
+            .count();
+        assert!(drawn > 500, "{model}: {drawn} pixels drawn");
+    }
+}
