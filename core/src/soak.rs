@@ -98,6 +98,30 @@ pub fn percentile(xs: &[f64], q: f64) -> f64 {
     }
 }
 
+/// Seconds past the warm-up below which a memory slope is not reported as a trend: the
+/// allocator and driver caches still settle in the first minutes.
+pub const MIN_TREND_S: f64 = 600.0;
+
+/// Least-squares slope of y over x and the half-width of its 95 % confidence interval
+/// (normal approximation, residual standard error; NaN with fewer than 3 points). Memory
+/// samples are autocorrelated, so the interval is a lower bound on the real uncertainty.
+pub fn slope_ci(xs: &[f64], ys: &[f64]) -> (f64, f64) {
+    let b = slope(xs, ys);
+    let n = xs.len();
+    if n < 3 || !b.is_finite() {
+        return (b, f64::NAN);
+    }
+    let nf = n as f64;
+    let (mx, my) = (xs.iter().sum::<f64>() / nf, ys.iter().sum::<f64>() / nf);
+    let sxx: f64 = xs.iter().map(|x| (x - mx).powi(2)).sum();
+    let rss: f64 = xs
+        .iter()
+        .zip(ys)
+        .map(|(x, y)| (y - (my + b * (x - mx))).powi(2))
+        .sum();
+    (b, 1.96 * (rss / (nf - 2.0) / sxx).sqrt())
+}
+
 /// Least-squares slope of y over x.
 pub fn slope(xs: &[f64], ys: &[f64]) -> f64 {
     let n = xs.len() as f64;
@@ -206,7 +230,9 @@ pub fn summarize(s: &SummaryInput) -> Value {
         .filter_map(|r| r.rss_mb.map(|m| (r.t_s, m)))
         .collect();
     let (mt, mm): (Vec<f64>, Vec<f64>) = mem.iter().copied().unzip();
-    let growth = slope(&mt, &mm) * 60.0;
+    let (growth, half) = slope_ci(&mt, &mm);
+    let (growth, half) = (growth * 60.0, half * 60.0);
+    let span = mt.last().zip(mt.first()).map_or(0.0, |(b, a)| b - a);
     let mut tier_frames = vec![0u64; s.tiers.len()];
     if !s.tiers.is_empty() {
         for f in s.frames {
@@ -235,6 +261,9 @@ pub fn summarize(s: &SummaryInput) -> Value {
         "memory_mb_start": mm.first(),
         "memory_mb_end": mm.last(),
         "memory_growth_mb_per_min": growth,
+        "memory_growth_ci95_mb_per_min": [growth - half, growth + half],
+        "memory_span_s": span,
+        "memory_trend": span >= MIN_TREND_S,
         "present_histogram": {"on_time": hist[0], "late_1": hist[1], "late_2": hist[2], "late_3_plus": hist[3]},
         "allocations_per_frame": {"p50": percentile(&allocs, 0.5), "max": allocs.iter().copied().fold(f64::NAN, f64::max)},
         "tiers": s.tiers.iter().map(|m| m.name()).collect::<Vec<_>>(),
@@ -302,11 +331,22 @@ pub fn summary_lines(config: &Value, s: &Value) -> Vec<String> {
         s["stability_windows"],
         f(&s["stability_window_s"])
     ));
+    let ci = &s["memory_growth_ci95_mb_per_min"];
+    let trend = if s["memory_trend"].as_bool() == Some(true) {
+        String::new()
+    } else {
+        format!(
+            "; only {:.0} s past the warm-up: not a trend (run ≥ {MIN_TREND_S:.0} s)",
+            f(&s["memory_span_s"])
+        )
+    };
     out.push(format!(
-        "  memory: {:.1} → {:.1} MiB, growth {:+.3} MiB/min (least squares)",
+        "  memory: {:.1} → {:.1} MiB, growth {:+.3} MiB/min (least squares, 95 % CI {:+.3} … {:+.3}){trend}",
         f(&s["memory_mb_start"]),
         f(&s["memory_mb_end"]),
-        f(&s["memory_growth_mb_per_min"])
+        f(&s["memory_growth_mb_per_min"]),
+        f(&ci[0]),
+        f(&ci[1])
     ));
     let h = &s["present_histogram"];
     out.push(format!(
@@ -404,6 +444,16 @@ mod tests {
         assert!((percentile(&v, 0.5) - 2.5).abs() < 1e-12);
         assert!(percentile(&[], 0.5).is_nan());
         assert!((slope(&[0.0, 1.0, 2.0], &[1.0, 3.0, 5.0]) - 2.0).abs() < 1e-12);
+        // An exact line has a zero-width interval; noise widens it around the true slope.
+        let (b, half) = slope_ci(&[0.0, 1.0, 2.0, 3.0], &[1.0, 3.0, 5.0, 7.0]);
+        assert!((b - 2.0).abs() < 1e-12 && half.abs() < 1e-9);
+        let xs: Vec<f64> = (0..200).map(f64::from).collect();
+        let ys: Vec<f64> = xs
+            .iter()
+            .map(|x| 0.5 * x + if (*x as i64) % 2 == 0 { 1.0 } else { -1.0 })
+            .collect();
+        let (b, half) = slope_ci(&xs, &ys);
+        assert!(half > 0.0 && (b - 0.5).abs() < half, "{b} ± {half}");
         // 10 windows over 10 s; the second half at half the rate.
         let mut times: Vec<f64> = (0..300).map(|i| i as f64 / 60.0).collect();
         times.extend((0..150).map(|i| 5.0 + i as f64 / 30.0));
