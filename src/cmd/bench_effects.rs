@@ -10,6 +10,7 @@ use serde_json::{json, Value};
 
 use crate::cli::parse_model;
 use crate::cmd::args::{parse_bench_frames, parse_rounds, shading_help, BENCH_FRAMES, ROUNDS};
+use crate::cmd::progress::Progress;
 use crate::cmd::render::parse_size;
 use crate::cmd::stats::ratio_ci;
 
@@ -100,14 +101,17 @@ pub fn run(args: EffectsArgs) -> Result<(), String> {
         play(k, 30, false)?;
     }
     let (rounds, n) = (args.rounds, args.frames);
+    let mut progress = Progress::new("bench effects", 3 * rounds as u64);
     for r in 0..rounds {
         for j in 0..3 {
             let k = (j + r) % 3;
             let (c, g) = play(k, n, true)?;
             cpu[k].push(c);
             gpu_ms[k].push(g);
+            progress.step("rounds × modes");
         }
     }
+    progress.finish();
     let total = (rounds * n) as f64;
     let modes = ["off", "coverage+light", "coverage+light+governor"];
     let rows: Vec<Value> = (0..3)

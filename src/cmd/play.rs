@@ -13,6 +13,7 @@ use serde_json::json;
 use crate::alloc_count::allocations;
 use crate::cli::parse_model;
 use crate::cmd::args::{check_out_dir, parse_fps, parse_play_frames, prealloc, shading_help};
+use crate::cmd::progress::Progress;
 use crate::cmd::render::parse_size;
 use crate::cmd::stats::{median, percentile};
 
@@ -75,6 +76,9 @@ pub fn run(args: PlayArgs) -> Result<(), String> {
     let mut live_changes = 0u64;
     let mut shots: Vec<(&str, bool)> = vec![("main", false), ("play", false), ("game-over", false)];
     let mut play_frames = 0u64;
+    // Every 60th frame, after the frame's measured work (its allocations are counted inside
+    // the driver's frame only).
+    let mut progress = Progress::new("play", args.frames);
     for frame in 0..args.frames {
         let mut shoot = None;
         // After the frame's passes: copy out the first frame of each screen not yet saved.
@@ -116,6 +120,9 @@ pub fn run(args: PlayArgs) -> Result<(), String> {
         wgpu_allocs.push((a.submitted - a.updated) as f64);
         draw_calls = draw_calls.max(stats.draw_calls);
         max_ticks = max_ticks.max(info.ticks);
+        if (frame + 1) % 60 == 0 {
+            progress.set(frame + 1, args.frames, "frames");
+        }
         if frame == WARM_UP {
             live_warm = Some(LiveObjects::read(&gpu.device));
         } else if let Some(warm) = live_warm {
@@ -124,6 +131,7 @@ pub fn run(args: PlayArgs) -> Result<(), String> {
             }
         }
     }
+    progress.finish();
     let steady = |v: &[f64]| -> Vec<f64> { v.iter().skip(WARM_UP as usize).copied().collect() };
     let (d, wg, cpu) = (
         steady(&dermis_allocs),
