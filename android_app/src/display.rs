@@ -19,17 +19,25 @@ use crate::intent::{get, with_activity};
 /// `WindowInsetsController.BEHAVIOR_SHOW_TRANSIENT_BARS_BY_SWIPE`.
 const BEHAVIOR_SHOW_TRANSIENT_BARS_BY_SWIPE: i32 = 2;
 
+/// The activity's `Window`.
+fn window<'local>(
+    env: &mut Env<'local>,
+    activity: &JObject,
+) -> Result<JObject<'local>, jni::errors::Error> {
+    get(
+        env,
+        activity,
+        jni_str!("getWindow"),
+        jni_sig!("()Landroid/view/Window;"),
+    )
+}
+
 /// The decor view's current `WindowInsets` (null before the view is attached).
 fn root_insets<'local>(
     env: &mut Env<'local>,
     activity: &JObject,
 ) -> Result<JObject<'local>, jni::errors::Error> {
-    let window = get(
-        env,
-        activity,
-        jni_str!("getWindow"),
-        jni_sig!("()Landroid/view/Window;"),
-    )?;
+    let window = window(env, activity)?;
     let decor = get(
         env,
         &window,
@@ -119,12 +127,7 @@ pub fn safe_insets(app: &AndroidApp) -> Insets {
 /// Immersive sticky mode where the device has `WindowInsetsController` (API 30+).
 pub fn enter_immersive(app: &AndroidApp) {
     let r = with_activity(app, |env, activity| {
-        let window = get(
-            env,
-            activity,
-            jni_str!("getWindow"),
-            jni_sig!("()Landroid/view/Window;"),
-        )?;
+        let window = window(env, activity)?;
         let controller = get(
             env,
             &window,
