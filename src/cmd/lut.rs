@@ -4,6 +4,7 @@
 use std::path::PathBuf;
 use std::time::Instant;
 
+use crate::cmd::args::check_out_dir;
 use dermis_core::reference;
 use dermis_core::shading::bake;
 use dermis_core::shading::material::PRESETS;
@@ -19,8 +20,8 @@ pub struct LutArgs {
 /// Bakes every preset at its own η and at the reference scenes' η (the tables are
 /// deterministic: the same bytes for any thread count).
 pub fn run(args: LutArgs) -> Result<(), String> {
-    std::fs::create_dir_all(&args.out)
-        .map_err(|e| format!("cannot create {}: {e}", args.out.display()))?;
+    // Checked before minutes of Monte Carlo, not after.
+    check_out_dir(&args.out)?;
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
     let budget = bake::DEFAULT_BUDGET;
     let materials = PRESETS

@@ -4,6 +4,7 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+use crate::cmd::args::check_out_dir;
 use crate::cmd::progress::Progress;
 use dermis_core::reference::{self, ReferenceSet};
 use dermis_core::shading::material::{Material, SKIN1, WHITE_COAT};
@@ -48,15 +49,6 @@ fn materials(name: &str) -> Result<Vec<Material>, String> {
         .ok_or_else(|| format!("unknown material `{name}` (known: skin1, white-coat, all)"))
 }
 
-/// Checks that `dir` exists (or can be created) and accepts files.
-fn check_writable(dir: &Path) -> Result<(), String> {
-    std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
-    let probe = dir.join(format!(".dermis-reference-{}", std::process::id()));
-    std::fs::write(&probe, b"").map_err(|e| format!("cannot write to {}: {e}", dir.display()))?;
-    std::fs::remove_file(&probe).ok();
-    Ok(())
-}
-
 pub fn run(args: ReferenceArgs) -> Result<(), String> {
     let mats = materials(&args.material)?;
     if let Some(p) = args.photons {
@@ -77,7 +69,7 @@ pub fn run(args: ReferenceArgs) -> Result<(), String> {
                 .map_err(|e| format!("{}: {e}", m.name))?;
         }
     }
-    check_writable(&args.out)?;
+    check_out_dir(&args.out)?;
 
     for m in &mats {
         let photons = args.photons.unwrap_or_else(|| default_photons(m));
