@@ -5,48 +5,61 @@
 #import fresnel
 #import dipole_nd
 
-struct ModelParams {
-    // rgb: σ_tr (mm⁻¹); w: η.
-    sigma_tr: vec4<f32>,
-    // rgb: z_r (mm); w: mm of r per metre of light distance.
-    z_r: vec4<f32>,
-    // rgb: z_v (mm); w: area (mm²) turning R_d into a reflectance.
-    z_v: vec4<f32>,
-    // rgb: α'; w: minimum light distance (m).
-    albedo: vec4<f32>,
-    // rgb: total diffuse reflectance R_d (ambient term).
-    total: vec4<f32>,
-    // rgb: σ'_t = 1/ℓ (mm⁻¹).
-    sigma_t: vec4<f32>,
-    // rgb: σ_tr ℓ = √(3σ_a/σ'_t); w: z_v/ℓ = 1 + 4A/3 (standard form's nondimensional inputs).
-    nd: vec4<f32>,
+// Declared once, in core/src/shading/dipole.rs (`DipoleUniform`): the same members in the same
+// order (core/tests/uniform_layout.rs checks names, offsets and sizes).
+struct DipoleUniform {
+    // σ_tr (mm⁻¹).
+    sigma_tr: vec3<f32>,
+    // η.
+    eta: f32,
+    // z_r (mm).
+    z_r: vec3<f32>,
+    // mm of r per metre of light distance.
+    r_mm_per_m: f32,
+    // z_v (mm).
+    z_v: vec3<f32>,
+    // Area (mm²) turning R_d into a reflectance.
+    area_mm2: f32,
+    // α'.
+    albedo: vec3<f32>,
+    // Minimum light distance (m).
+    light_d_min_m: f32,
+    // Total diffuse reflectance R_d (ambient term).
+    total: vec3<f32>,
+    _pad0: f32,
+    // σ'_t = 1/ℓ (mm⁻¹).
+    sigma_t_prime: vec3<f32>,
+    _pad1: f32,
+    // σ_tr ℓ = √(3σ_a/σ'_t) and z_v/ℓ = 1 + 4A/3 (standard form's nondimensional inputs).
+    s_nd: vec3<f32>,
+    zv_nd: f32,
 };
 
-@group(1) @binding(0) var<uniform> model: ModelParams;
+@group(1) @binding(0) var<uniform> model: DipoleUniform;
 
 // R_d(r) in mm⁻², r in mm.
 fn dipole_profile(r: f32) -> vec3<f32> {
 #ifdef DIPOLE_PRINTED
-    let s = model.sigma_tr.rgb;
-    let zr = model.z_r.rgb;
-    let zv = model.z_v.rgb;
+    let s = model.sigma_tr;
+    let zr = model.z_r;
+    let zv = model.z_v;
     let dr = sqrt(zr * zr + r * r);
     let dv = sqrt(zv * zv + r * r);
     // Eq. 3 as printed: both terms divided by σ'_t; the virtual one also keeps z_v.
-    let real = (s * dr + 1.0) * exp(-s * dr) / (model.sigma_t.rgb * dr * dr * dr);
-    let virt = zv * (s * dv + 1.0) * exp(-s * dv) / (model.sigma_t.rgb * dv * dv * dv);
-    return model.albedo.rgb * (0.25 * INV_PI) * (real + virt);
+    let real = (s * dr + 1.0) * exp(-s * dr) / (model.sigma_t_prime * dr * dr * dr);
+    let virt = zv * (s * dv + 1.0) * exp(-s * dv) / (model.sigma_t_prime * dv * dv * dv);
+    return model.albedo * (0.25 * INV_PI) * (real + virt);
 #else
     // Standard form in units of ℓ = 1/σ'_t (dipole_nd.wgsl): R_d = σ'_t² · R̃_d(σ'_t r).
-    let t = model.sigma_t.rgb;
-    return t * t * dipole_rd_nd(t * r, model.nd.rgb, model.nd.w, model.albedo.rgb);
+    let t = model.sigma_t_prime;
+    return t * t * dipole_rd_nd(t * r, model.s_nd, model.zv_nd, model.albedo);
 #endif
 }
 
 fn shade(s: Surface) -> vec3<f32> {
-    let r = max(s.light_dist, model.albedo.w) * model.z_r.w;
-    let eta = model.sigma_tr.w;
+    let r = max(s.light_dist, model.light_d_min_m) * model.r_mm_per_m;
+    let eta = model.eta;
     let ft = fresnel_transmittance(eta, dot(s.n, s.l)) * fresnel_transmittance(eta, dot(s.n, s.v));
-    let direct = s.light * dipole_profile(r) * (ft * INV_PI * model.z_v.w);
-    return frame.ambient.rgb * model.total.rgb + direct;
+    let direct = s.light * dipole_profile(r) * (ft * INV_PI * model.area_mm2);
+    return frame.ambient.rgb * model.total + direct;
 }

@@ -5,46 +5,61 @@
 #import ward_lobe
 #import oss_nd
 
-struct ModelParams {
-    // f_d = c0 + c1 d + c2 d² + c3 d³ per channel; c0.w: mm of depth per metre of thickness.
-    c0: vec4<f32>,
-    c1: vec4<f32>,
-    c2: vec4<f32>,
-    c3: vec4<f32>,
-    // x: ρ_d, y: ρ_ts, z: minimum light distance (m) for d^-2.5, w: textured flag.
-    misc: vec4<f32>,
-    // x: ρ_s, y: α_x, z: α_y.
-    lobe: vec4<f32>,
-    // rgb: σ_a (mm⁻¹); w: F_dr(η). Stable form only.
-    sigma_a: vec4<f32>,
-    // rgb: σ'_s P(g) (mm⁻¹). Stable form only.
-    sp: vec4<f32>,
+// Declared once, in core/src/shading/oss.rs (`OssUniform`): the same members in the same order
+// (core/tests/uniform_layout.rs checks names, offsets and sizes).
+struct OssUniform {
+    // f_d = c0 + c1 d + c2 d² + c3 d³ per channel (printed form).
+    c0: vec3<f32>,
+    // mm of depth per metre of thickness.
+    depth_mm_per_m: f32,
+    c1: vec3<f32>,
+    _pad0: f32,
+    c2: vec3<f32>,
+    _pad1: f32,
+    c3: vec3<f32>,
+    _pad2: f32,
+    // ρ_d, ρ_ts, the minimum light distance (m) for d^-2.5, 1 when the texture tints.
+    rho_d: f32,
+    rho_ts: f32,
+    light_d_min_m: f32,
+    textured: f32,
+    // The Ward lobe.
+    rho_s: f32,
+    alpha_x: f32,
+    alpha_y: f32,
+    _pad3: f32,
+    // σ_a (mm⁻¹) and F_dr(η). Stable form only.
+    sigma_a: vec3<f32>,
+    fdr: f32,
+    // σ'_s P (mm⁻¹). Stable form only.
+    sp: vec3<f32>,
+    _pad4: f32,
 };
 
-@group(1) @binding(0) var<uniform> model: ModelParams;
+@group(1) @binding(0) var<uniform> model: OssUniform;
 
 fn oss_colour(d: f32) -> vec3<f32> {
 #ifdef OSS_STABLE
     // On the optical depths σ_a d and σ'_s P d (oss_nd.wgsl).
-    return oss_fd_stable_nd(model.sigma_a.rgb * d, model.sp.rgb * d, model.sigma_a.w);
+    return oss_fd_stable_nd(model.sigma_a * d, model.sp * d, model.fdr);
 #else
-    return model.c0.rgb + d * (model.c1.rgb + d * (model.c2.rgb + d * model.c3.rgb));
+    return model.c0 + d * (model.c1 + d * (model.c2 + d * model.c3));
 #endif
 }
 
 fn shade(s: Surface) -> vec3<f32> {
-    let fd = oss_colour(s.thickness * model.c0.w);
-    let tex = select(vec3<f32>(1.0), s.albedo, model.misc.w > 0.5);
+    let fd = oss_colour(s.thickness * model.depth_mm_per_m);
+    let tex = select(vec3<f32>(1.0), s.albedo, model.textured > 0.5);
     let nl = max(dot(s.n, s.l), 0.0);
-    let dl = max(s.light_dist, model.misc.z);
+    let dl = max(s.light_dist, model.light_d_min_m);
     // Eq. 6: f_d (ρ_d cos θ + 20 ρ_ts / d^2.5). The translucency term is its own fall-off
     // with the light distance d: it scales the light's intensity, not the inverse-square
     // irradiance (which would make it d^-4.5).
-    let translucency = 20.0 * model.misc.y / pow(dl, 2.5) * s.light;
+    let translucency = 20.0 * model.rho_ts / pow(dl, 2.5) * s.light;
     let e0 = irradiance(s);
-    let diffuse = fd * tex * (model.misc.x * nl * e0 + translucency) * INV_PI;
-    let specular = e0 * nl * ward_specular(s, model.lobe.x, model.lobe.y, model.lobe.z);
-    let ambient = frame.ambient.rgb * fd * tex * model.misc.x;
+    let diffuse = fd * tex * (model.rho_d * nl * e0 + translucency) * INV_PI;
+    let specular = e0 * nl * ward_specular(s, model.rho_s, model.alpha_x, model.alpha_y);
+    let ambient = frame.ambient.rgb * fd * tex * model.rho_d;
     // As printed f_d can be negative (thick layers): radiance is clamped at 0.
     return max(ambient + diffuse + vec3<f32>(specular), vec3<f32>(0.0));
 }

@@ -25,14 +25,14 @@ fn shade(s: Surface) -> vec3<f32> {
     let exit = lut_row(dot(s.n, s.v), CURVATURE_ROWS).r;
     // Curvature axis: v = R0 / (R0 + ρ), within the curvature rows.
     let rho_mm = s.curvature_radius * 1000.0;
-    let v = model.misc.w / (model.misc.w + rho_mm);
+    let v = model.lut_r0_mm / (model.lut_r0_mm + rho_mm);
     let v_tex = min(v * CURVATURE_ROWS, CURVATURE_ROWS - 0.5) / LUT_ROWS;
     // The light lifted by each channel's Poisson height s_c: its distance² over the tangent
     // plane, d² + 2 h s_c + s_c² (h its height, mm), scales each channel's irradiance; one
     // fetch at the cosine of the light lifted by the channels' mean height serves all three.
     let d = s.light_dist * 1000.0;
     let h = dot(s.n, s.l) * d;
-    let lift = model.lift.rgb;
+    let lift = model.lift;
     let d2 = max(vec3<f32>(d * d) + 2.0 * h * lift + lift * lift, vec3<f32>(1e-12));
     let mean = dot(lift, vec3<f32>(1.0 / 3.0));
     let mu = clamp((h + mean) * inverseSqrt(max(d * d + 2.0 * h * mean + mean * mean, 1e-12)), -1.0, 1.0);
@@ -45,11 +45,11 @@ fn shade(s: Surface) -> vec3<f32> {
     // radius ρ, whose chord along the light here is 2ρ·back, so only a part thinner than its
     // curvature implies (an ear, a finger) adds the difference of the two slabs.
     let back = max(-dot(s.n, s.l), 0.0);
-    let path = s.thickness * model.misc.z * back;
+    let path = s.thickness * model.mm_per_m * back;
     let entry = lut_row(back, CURVATURE_ROWS).g;
     let slab = lut_row(log2(max(path, 0.25) / 0.25) / 9.0, CURVATURE_ROWS + 1.0).rgb;
     let ball = lut_row(log2(max(2.0 * rho_mm * back, 0.25) / 0.25) / 9.0, CURVATURE_ROWS + 1.0).rgb;
     let through = back * entry * max(slab - ball, vec3<f32>(0.0));
-    let ambient = PI * frame.ambient.rgb * model.albedo.rgb;
+    let ambient = PI * frame.ambient.rgb * model.albedo;
     return exit * (ambient + irradiance(s) * (response + through));
 }

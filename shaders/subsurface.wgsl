@@ -8,26 +8,35 @@
 #import common
 #import fresnel
 
-struct ModelParams {
-    // rgb: diffuse reflectance of the medium at normal incidence per incident power; w: η.
-    albedo: vec4<f32>,
-    // x: 1/(π C(η)); y: 1/F_t(η, 1); z: mm per metre of thickness;
-    // w: the pre-integration LUT's curvature scale R0 (mm).
-    misc: vec4<f32>,
-    // rgb: height (mm) the light is lifted by to blur a point light's irradiance (preintegrated);
-    // w: 1 for models with translucency (their composition sets TRANSLUCENCY; read by the f64
+// Declared once, in core/src/shading/subsurface.rs (`SubsurfaceUniform`): the same members in
+// the same order (core/tests/uniform_layout.rs checks names, offsets and sizes).
+struct SubsurfaceUniform {
+    // Diffuse reflectance of the medium at normal incidence per incident power.
+    albedo: vec3<f32>,
+    eta: f32,
+    // 1/(π C(η)).
+    exit_norm: f32,
+    // 1/F_t(η, 1).
+    inv_entry: f32,
+    // mm per metre of thickness.
+    mm_per_m: f32,
+    // The pre-integration LUT's curvature scale R0 (mm).
+    lut_r0_mm: f32,
+    // Height (mm) the light is lifted by to blur a point light's irradiance (preintegrated).
+    lift: vec3<f32>,
+    // 1 for models with translucency (their composition sets TRANSLUCENCY; read by the f64
     // twin).
-    lift: vec4<f32>,
-    // q(μ_k) = R(μ_k)/R(1), μ_k = (k/6)² (tables are linear in √μ): oblique incidence
+    translucent: f32,
+    // rgb: q(μ_k) = R(μ_k)/R(1), μ_k = (k/6)² (tables are linear in √μ): oblique incidence
     // relative to normal, per channel.
     oblique: array<vec4<f32>, 7>,
-    // ln of the diffuse transmittance of a slab 0.25 · 2^k mm thick lit from behind.
+    // rgb: ln of the diffuse transmittance of a slab 0.25 · 2^k mm thick lit from behind.
     slab: array<vec4<f32>, 7>,
-    // δ(μ_k) (mm): how far forward light entering at μ_k leaves, per channel.
+    // rgb: δ(μ_k) (mm): how far forward light entering at μ_k leaves, per channel.
     shift: array<vec4<f32>, 7>,
 };
 
-@group(1) @binding(0) var<uniform> model: ModelParams;
+@group(1) @binding(0) var<uniform> model: SubsurfaceUniform;
 
 // What a spatial model's pixel contributes: radiance that stays put, irradiance that the
 // screen-space pass spreads with the diffusion kernel, and the exit factor that turns the
@@ -71,20 +80,20 @@ fn sss_spread(s: Surface) -> vec3<f32> {
     let along = s.l - s.n * nl;
     let len = length(along);
     let dir = select(vec3<f32>(0.0), along / max(len, 1e-12), len > 1e-9);
-    let rho = len * s.light_dist * model.misc.z;
+    let rho = len * s.light_dist * model.mm_per_m;
     let to_light = s.l * s.light_dist;
     let delta = min(sss_shift(max(nl, 0.0)), vec3<f32>(rho));
-    let ddelta = -sss_shift_slope(max(nl, 0.0)) * max(nl, 0.0) * len / (s.light_dist * model.misc.z);
+    let ddelta = -sss_shift_slope(max(nl, 0.0)) * max(nl, 0.0) * len / (s.light_dist * model.mm_per_m);
     // The light as it reaches this point (occluded here: nothing is spread from here).
     let light = s.light;
     var out = vec3<f32>(0.0);
     for (var c = 0u; c < 3u; c = c + 1u) {
-        let back = dir * (delta[c] / model.misc.z);
+        let back = dir * (delta[c] / model.mm_per_m);
         let d = to_light - back;
         let r = max(length(d), 1e-3);
         // On a curved surface the entry point's normal is turned toward the light by δ/ρ_c
         // (at most 1 rad).
-        let tilt = min(delta[c] / max(s.curvature_radius * model.misc.z, 1e-3), 1.0);
+        let tilt = min(delta[c] / max(s.curvature_radius * model.mm_per_m, 1e-3), 1.0);
         let n = normalize(s.n + dir * tilt);
         let mu = max(dot(n, d) / r, 0.0);
         let area = select(1.0, (rho - delta[c]) / rho, rho > 1e-6) * max(1.0 - ddelta[c], 0.0);
@@ -95,7 +104,7 @@ fn sss_spread(s: Surface) -> vec3<f32> {
 }
 
 fn sss_exit(s: Surface) -> f32 {
-    return fresnel_transmittance(model.albedo.w, max(dot(s.n, s.v), 0.0)) * model.misc.x;
+    return fresnel_transmittance(model.eta, max(dot(s.n, s.v), 0.0)) * model.exit_norm;
 }
 
 #ifdef TRANSLUCENCY
@@ -121,9 +130,9 @@ fn sss_translucency(s: Surface) -> vec3<f32> {
     let back = max(-dot(s.n, s.l), 0.0);
     // The path through the material along the light: the thickness (through the surface
     // along its normal) times |n·l|, exact for a sphere's chord, the slab's at normal light.
-    let path = s.thickness * model.misc.z * back;
+    let path = s.thickness * model.mm_per_m * back;
     // Entry through the far face: its Fresnel transmission relative to normal incidence.
-    let entry = fresnel_transmittance(model.albedo.w, back) * model.misc.y;
+    let entry = fresnel_transmittance(model.eta, back) * model.inv_entry;
     return irradiance(s) * back * entry * sss_slab(path);
 #else
     return vec3<f32>(0.0);
@@ -135,7 +144,7 @@ fn sss_split(s: Surface) -> Split {
     out.exit = sss_exit(s);
     out.spread = sss_spread(s);
     // Ambient: uniform radiance L_a gives irradiance π L_a, reflected with the medium's albedo.
-    out.local = out.exit * (PI * frame.ambient.rgb * model.albedo.rgb + sss_translucency(s));
+    out.local = out.exit * (PI * frame.ambient.rgb * model.albedo + sss_translucency(s));
     return out;
 }
 
@@ -143,5 +152,5 @@ fn sss_split(s: Surface) -> Split {
 // (the kernel integrates to the albedo).
 fn sss_local(s: Surface) -> vec3<f32> {
     let p = sss_split(s);
-    return p.local + p.exit * model.albedo.rgb * p.spread;
+    return p.local + p.exit * model.albedo * p.spread;
 }

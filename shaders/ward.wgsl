@@ -3,25 +3,33 @@
 #import common
 #import ward_lobe
 
-struct ModelParams {
-    // rgb: R_d(α'); w: 1 when the texture tints the diffuse colour.
-    rho_d: vec4<f32>,
-    // x: ρ_s, y: α_x, z: α_y.
-    lobe: vec4<f32>,
+// Declared once, in core/src/shading/ward.rs (`WardUniform`): the same members in the same
+// order (core/tests/uniform_layout.rs checks names, offsets and sizes).
+struct WardUniform {
+    // R_d(α').
+    rho_d: vec3<f32>,
+    // 1 when the texture tints the diffuse colour.
+    textured: f32,
+    // The specular lobe.
+    rho_s: f32,
+    alpha_x: f32,
+    alpha_y: f32,
+    _pad0: f32,
     // The paper's sliders: x diffuse, y ambient, z specular.
-    sliders: vec4<f32>,
+    sliders: vec3<f32>,
+    _pad1: f32,
 };
 
-@group(1) @binding(0) var<uniform> model: ModelParams;
+@group(1) @binding(0) var<uniform> model: WardUniform;
 
 fn shade(s: Surface) -> vec3<f32> {
-    let tex = select(vec3<f32>(1.0), s.albedo, model.rho_d.w > 0.5);
-    let kd = model.rho_d.rgb * tex;
+    let tex = select(vec3<f32>(1.0), s.albedo, model.textured > 0.5);
+    let kd = model.rho_d * tex;
     let ambient = frame.ambient.rgb * kd * model.sliders.y;
     let nl = dot(s.n, s.l);
     if (nl <= 0.0) {
         return ambient;
     }
-    let spec = ward_specular(s, model.lobe.x, model.lobe.y, model.lobe.z);
+    let spec = ward_specular(s, model.rho_s, model.alpha_x, model.alpha_y);
     return ambient + irradiance(s) * nl * (kd * INV_PI * model.sliders.x + vec3<f32>(spec * model.sliders.z));
 }

@@ -1,6 +1,5 @@
 //! `dermis`: the desktop app and its headless commands.
 
-mod alloc_count;
 mod cli;
 mod cmd;
 mod demo;
@@ -12,7 +11,7 @@ use std::process::ExitCode;
 use clap::Parser;
 
 #[global_allocator]
-static ALLOCATOR: alloc_count::Counting = alloc_count::Counting;
+static ALLOCATOR: dermis_core::heap::Counting = dermis_core::heap::Counting;
 
 fn main() -> ExitCode {
     env_logger::Builder::from_env(

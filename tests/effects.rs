@@ -72,11 +72,12 @@ fn the_game_builds_exactly_the_pipelines_it_can_reach() {
     assert_eq!(gg.renderer.built_pipelines(), needed);
     assert!(!needed.unlit, "the game never draws the unlit baseline");
     // One pipeline per reachable model, one for props, one for the UI, and — because the
-    // menu reaches screen-space models — the props' two-target variant and the subsurface pass.
+    // menu reaches screen-space models — the props' two-target variant and the subsurface
+    // pass; and the blob shadows' two (one per target layout: the props cast).
     assert!(needed.needs_subsurface_pass() && gg.renderer.has_subsurface_pass());
     assert_eq!(
         after.render_pipelines - before.render_pipelines,
-        needed.models.len() as isize + 4
+        needed.models.len() as isize + 6
     );
 }
 

@@ -3,9 +3,7 @@
 //! sampler) is created, and wgpu's own allocations per frame do not grow over 1000 frames.
 //! One test in its own binary, so the counting allocator sees only this thread's work.
 
-use std::alloc::{GlobalAlloc, Layout, System};
 use std::path::Path;
-use std::sync::atomic::{AtomicU64, Ordering};
 
 use dermis_core::game::{GameFrame, GameGpu, Session};
 use dermis_core::render::{
@@ -14,25 +12,8 @@ use dermis_core::render::{
 use dermis_core::scene::SceneAssets;
 use dermis_core::shading::ShadingModel;
 
-struct Counting;
-static ALLOCS: AtomicU64 = AtomicU64::new(0);
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, l: Layout) -> *mut u8 {
-        ALLOCS.fetch_add(1, Ordering::Relaxed);
-        unsafe { System.alloc(l) }
-    }
-    unsafe fn dealloc(&self, p: *mut u8, l: Layout) {
-        unsafe { System.dealloc(p, l) }
-    }
-    unsafe fn realloc(&self, p: *mut u8, l: Layout, n: usize) -> *mut u8 {
-        ALLOCS.fetch_add(1, Ordering::Relaxed);
-        unsafe { System.realloc(p, l, n) }
-    }
-}
-
 #[global_allocator]
-static A: Counting = Counting;
+static A: dermis_core::heap::Counting = dermis_core::heap::Counting;
 
 #[test]
 fn play_creates_nothing_and_wgpu_allocations_do_not_grow() {
@@ -45,7 +26,7 @@ fn play_creates_nothing_and_wgpu_allocations_do_not_grow() {
     let mut session = Session::new(&assets.character, 7, None, true);
     // The shells' frame driver, at a fixed step, waiting for the GPU after each frame.
     let mut driver = FrameDriver::new(Clock::Fixed(1.0 / 60.0))
-        .with_alloc_counter(|| ALLOCS.load(Ordering::Relaxed));
+        .with_alloc_counter(dermis_core::heap::allocations);
     driver.sync = true;
     let frames = 1000;
     let warm_up = 100;

@@ -68,8 +68,8 @@ fn a_thousand_lifecycle_cycles_leak_no_gpu_object() {
     frame(&targets, &mut session, &mut gg);
     gpu.wait();
     let before = LiveObjects::read(&gpu.device);
-    let page = dermis_core::soak::page_bytes();
-    let rss_before = dermis_core::soak::resident_mb(page);
+    let page = dermis_core::heap::page_bytes();
+    let rss_before = dermis_core::heap::resident_mb(page);
     let mut rendered = 0;
     for i in 0..1000u32 {
         let (w, h) = (32 + (i * 7) % 64, 24 + (i * 5) % 48);
@@ -119,7 +119,7 @@ fn a_thousand_lifecycle_cycles_leak_no_gpu_object() {
     assert!(rendered >= 90, "only {rendered} frames rendered");
     let after = LiveObjects::read(&gpu.device);
     // Resident memory is reported, not asserted (allocator and driver caches vary).
-    let rss_after = dermis_core::soak::resident_mb(page);
+    let rss_after = dermis_core::heap::resident_mb(page);
     println!("resident memory: {rss_before:?} MiB before, {rss_after:?} MiB after 1000 cycles");
     assert_eq!(
         before, after,

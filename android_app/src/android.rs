@@ -10,6 +10,7 @@ use crate::soak::{Soak, SoakConfig};
 use android_activity::input::{InputEvent, KeyAction, Keycode, MotionAction};
 use android_activity::{AndroidApp, InputStatus, MainEvent, PollEvent, WindowManagerFlags};
 use dermis_core::game::{Key, Session};
+use dermis_core::governor::GovernorConfig;
 use dermis_core::shading::ShadingModel;
 use std::time::Instant;
 
@@ -93,6 +94,7 @@ fn android_main(app: AndroidApp) {
                 }
                 MainEvent::Pause => {
                     renderer.reset_clock();
+                    renderer.pause_soak();
                     if let Some(game) = renderer.game_mut() {
                         game.session.auto_pause();
                     }
@@ -105,6 +107,7 @@ fn android_main(app: AndroidApp) {
                     Event::GainedFocus
                 }
                 MainEvent::LostFocus => {
+                    renderer.pause_soak();
                     if let Some(game) = renderer.game_mut() {
                         game.session.auto_pause();
                     }
@@ -116,7 +119,10 @@ fn android_main(app: AndroidApp) {
                     let (width, height) = window_size(&app);
                     Event::InitWindow { width, height }
                 }
-                MainEvent::TerminateWindow { .. } => Event::TermWindow,
+                MainEvent::TerminateWindow { .. } => {
+                    renderer.pause_soak();
+                    Event::TermWindow
+                }
                 MainEvent::ConfigChanged { .. } => {
                     renderer.set_scale(display_scale(&app));
                     renderer.set_insets(crate::display::safe_insets(&app));
@@ -204,6 +210,9 @@ fn load_game(app: &AndroidApp, extras: &Extras, soak: Option<&SoakConfig>) -> Op
     let mut game = Game::new(assets, session, settings_path);
     if let Some(soak) = soak {
         game.session.settings.set_shading_model(soak.shading);
+        // The governor's budget is the soak's target frame rate, as `dermis soak` sets it.
+        game.session
+            .configure_governor(GovernorConfig::for_fps(soak.target_fps), true, true);
         game.save_settings_on_save_state = false;
     } else if let Some(name) = &extras.shading {
         match ShadingModel::from_name(name) {

@@ -9,6 +9,7 @@
 use crate::lifecycle::FrameStatus;
 use android_activity::ndk::native_window::NativeWindow;
 use dermis_core::game::{GameFrame, GameGpu, Key, Screen, Session};
+use dermis_core::heap::allocations;
 use dermis_core::render::{Clock, FrameDriver, Gpu, Output, SurfaceOptions, SurfaceTarget};
 use dermis_core::scene::SceneAssets;
 use dermis_core::ui::Insets;
@@ -115,7 +116,7 @@ impl Renderer {
             game,
             scale,
             insets: Insets::ZERO,
-            driver: FrameDriver::new(Clock::INTERACTIVE),
+            driver: FrameDriver::new(Clock::INTERACTIVE).with_alloc_counter(allocations),
             frames: 0,
             soak: None,
         }
@@ -172,7 +173,7 @@ impl Renderer {
             None => {
                 let (gpu, surface) = init_gpu(window)?;
                 // The interactive driver: wall clock, every frame GPU-timed when it can be.
-                self.driver = FrameDriver::interactive(&gpu);
+                self.driver = FrameDriver::interactive(&gpu).with_alloc_counter(allocations);
                 self.gpu = Some(gpu);
                 surface
             }
@@ -210,12 +211,21 @@ impl Renderer {
         Ok(())
     }
 
-    /// Ends the soak run (if any) and returns its complete report.
+    /// Ends the soak run (if any) and returns its complete report: the GPU drained first, so
+    /// the last frames' GPU times are in.
     pub fn finish_soak(&mut self) -> Option<serde_json::Value> {
         let mut soak = self.soak.take()?;
         let gpu = self.gpu.as_ref()?;
+        self.driver.drain(gpu, |f, ms| soak.gpu_time(f, ms));
         let runs = self.game.as_ref().map_or(0, |g| g.session.game.runs());
-        Some(soak.finish(&gpu.device, runs))
+        soak.finish(&gpu.device, runs)
+    }
+
+    /// Stops the soak clock (pause, focus or window lost).
+    pub fn pause_soak(&mut self) {
+        if let Some(soak) = &mut self.soak {
+            soak.pause();
+        }
     }
 
     pub fn drop_surface(&mut self) {
@@ -254,17 +264,7 @@ impl Renderer {
             log::info!("shading model: {}", game.session.shading().name());
         }
         if let Some(soak) = &mut self.soak {
-            soak.frame(
-                gpu,
-                (times.width, times.height),
-                times.start,
-                times.cpu_ms(),
-                times.submit_present_ms(),
-                times.presented,
-                game.session.drawn_model(),
-                game.session.needs,
-                game.session.governor.changes(),
-            );
+            soak.frame(gpu, &times, self.driver.harvested(), &game.session);
         }
         self.frames += 1;
         if self.frames.is_multiple_of(3600) {

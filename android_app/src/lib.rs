@@ -8,6 +8,12 @@
 /// The lifecycle state machine lives in the core (platform-free, tested on the desktop).
 pub use dermis_core::lifecycle;
 
+/// Heap allocations are counted (the soak reports them per frame) and the Rust heap's live
+/// bytes measured, as on the desktop.
+#[cfg(target_os = "android")]
+#[global_allocator]
+static ALLOCATOR: dermis_core::heap::Counting = dermis_core::heap::Counting;
+
 #[cfg(target_os = "android")]
 mod android;
 #[cfg(target_os = "android")]

@@ -1,20 +1,23 @@
-//! The phone soak: the game on autoplay for N seconds, recording per frame the CPU frame time,
-//! the present interval in target periods and the shading tier; every ~2 s thermal status and
-//! headroom (a sampling thread, off the render thread); each frame's actual work duration
-//! reported to an API 33 performance-hint session where there is one. At the end the summary
-//! ([`dermis_core::soak`], the desktop's maths) goes to logcat and the report to
-//! `soak.json` in the external files directory (and, for a Game Loop test, to the file the
-//! intent's data URI names).
+//! The phone soak: the game on autoplay for N seconds of soak clock, recorded by the core's
+//! [`Recorder`] exactly as `dermis soak` records the desktop (the same per-frame and
+//! per-second records, GPU times where the device has timestamp queries, heap allocations per
+//! frame, the session governor's tier, memory split into resident / C allocator / Rust heap),
+//! written by the core's [`Writer`] to `frames.jsonl` and a running `soak.json` in the
+//! external files directory. The soak clock stops while the app is paused or has no window.
+//! On top of the desktop's report: thermal status and headroom every ~2 s (a sampling
+//! thread) and each frame's work reported to an API 33 performance-hint session where there
+//! is one. At the end the summary goes to logcat and the complete report to `soak.json` (and,
+//! for a Game Loop test, to the file the intent's data URI names).
 //!
 //! Game Loop scenarios ([`scenario`]): 1 = 60 s oss, 2 = 60 s burley, 3 = 600 s oss, all at
 //! 60 fps.
 
 use crate::ndk_dl::{HintSession, Thermal, ThermalSample};
-use dermis_core::governor::{Needs, Tiers};
-use dermis_core::render::{Gpu, LiveObjects};
+use dermis_core::game::{soak_sample, Session};
+use dermis_core::render::{FrameTimes, Gpu, LiveObjects};
 use dermis_core::shading::ShadingModel;
 use dermis_core::soak::{
-    page_bytes, report, resident_mb, summarize, write_atomic, FrameRec, SecondRec, SummaryInput,
+    config_json, report, summary_lines, Recorder, RecorderConfig, RunInfo, Writer,
 };
 use serde_json::{json, Value};
 use std::path::PathBuf;
@@ -45,68 +48,33 @@ pub struct SoakConfig {
     pub shading: ShadingModel,
     /// The Game Loop scenario number, if a test loop.
     pub scenario: Option<i32>,
-    /// Where `soak.json` goes (the external files directory).
+    /// Where `soak.json` and `frames.jsonl` go (the external files directory).
     pub out_dir: Option<PathBuf>,
 }
 
 type ThermalThread = (mpsc::Sender<()>, JoinHandle<Vec<ThermalSample>>);
 
-pub struct Soak {
-    pub cfg: SoakConfig,
-    tiers: Tiers,
-    start: Option<Instant>,
-    last_present: Option<Instant>,
-    frames: Vec<FrameRec>,
-    seconds: Vec<SecondRec>,
-    second_start: usize,
-    next_second: f64,
-    last_second_t: f64,
-    page: f64,
-    warm_up_s: f64,
-    tier_changes: u64,
-    governor_changes: u64,
-    last_tier: usize,
-    live_warm: Option<LiveObjects>,
-    live_changes: u64,
-    buffers: (isize, isize),
-    thermal: Option<ThermalThread>,
-    hint: Option<HintSession>,
-    hint_tried: bool,
-    adapter: String,
-    size: (u32, u32),
+/// A run in progress (from its first frame).
+struct Run {
+    rec: Recorder,
+    writer: Writer,
+    config: Value,
 }
 
-/// The objects created only at load (buffers left out: staging buffers come and go).
-fn same_load_objects(a: &LiveObjects, b: &LiveObjects) -> bool {
-    LiveObjects { buffers: 0, ..*a } == LiveObjects { buffers: 0, ..*b }
+pub struct Soak {
+    pub cfg: SoakConfig,
+    run: Option<Run>,
+    thermal: Option<ThermalThread>,
+    hint: Option<HintSession>,
 }
 
 impl Soak {
     pub fn new(cfg: SoakConfig) -> Self {
-        let expect = (cfg.seconds * cfg.target_fps * 1.1) as usize + 64;
         Soak {
-            tiers: Tiers::for_choice(cfg.shading),
-            warm_up_s: (cfg.seconds * 0.1).min(2.0),
             cfg,
-            start: None,
-            last_present: None,
-            frames: Vec::with_capacity(expect),
-            seconds: Vec::new(),
-            second_start: 0,
-            next_second: 1.0,
-            last_second_t: 0.0,
-            page: page_bytes(),
-            tier_changes: 0,
-            governor_changes: 0,
-            last_tier: usize::MAX,
-            live_warm: None,
-            live_changes: 0,
-            buffers: (isize::MAX, isize::MIN),
+            run: None,
             thermal: None,
             hint: None,
-            hint_tried: false,
-            adapter: String::new(),
-            size: (0, 0),
         }
     }
 
@@ -114,33 +82,57 @@ impl Soak {
         1.0 / self.cfg.target_fps
     }
 
-    /// Called on the render thread just before a frame's work starts (the first call starts
-    /// the clock, the thermal thread and the hint session).
-    fn begin(&mut self, gpu: &Gpu) {
-        if self.start.is_some() {
-            return;
-        }
-        let start = Instant::now();
-        self.start = Some(start);
-        self.adapter = gpu.adapter_name();
+    /// Starts the run at its first frame: the recorder, the writer, the thermal thread and
+    /// the hint session.
+    fn begin(&mut self, gpu: &Gpu, times: &FrameTimes, session: &Session) -> Run {
+        let rec_cfg = RecorderConfig {
+            seconds: self.cfg.seconds,
+            target_fps: self.cfg.target_fps,
+            tiers: session.governor.tiers().as_slice().to_vec(),
+            gpu_timed: gpu.timestamps,
+        };
+        let info = RunInfo {
+            platform: "android",
+            adapter: gpu.adapter_name(),
+            cpu_rasterizer: gpu.is_cpu(),
+            size: (times.width, times.height),
+            uncapped: false,
+            seed: session.game.seed(),
+            shading: self.cfg.shading,
+            governor: session.governor.enabled,
+            scheduling: session.governor.scheduling,
+            frames_in_flight: None,
+        };
+        let mut config = config_json(&rec_cfg, &info);
+        config["android_sdk"] = json!(android_activity::AndroidApp::sdk_version());
+        config["device"] = json!(device_name());
+        config["scenario"] = json!(self.cfg.scenario);
+        config["present_mode"] = json!("Fifo");
         log::info!(
-            "soak: {} s at {} fps, shading {} (tiers {:?}){}",
+            "soak: {} s at {} fps, shading {} (tiers {}){}",
             self.cfg.seconds,
             self.cfg.target_fps,
             self.cfg.shading.name(),
-            self.tiers
-                .as_slice()
-                .iter()
-                .map(|m| m.name())
-                .collect::<Vec<_>>(),
+            config["tiers"],
             self.cfg
                 .scenario
                 .map_or(String::new(), |s| format!(", Game Loop scenario {s}"))
         );
-        if !self.hint_tried {
-            self.hint_tried = true;
-            self.hint = HintSession::for_this_thread((self.period_s() * 1e9) as i64);
-        }
+        let writer = match Writer::start(
+            self.cfg.out_dir.clone(),
+            config.clone(),
+            WRITE_EVERY_S,
+            self.cfg.seconds,
+        ) {
+            Ok(w) => w,
+            Err(e) => {
+                log::warn!("soak: {e}; frames.jsonl is not written");
+                Writer::start(None, config.clone(), WRITE_EVERY_S, self.cfg.seconds)
+                    .expect("a writer without files starts")
+            }
+        };
+        self.hint = HintSession::for_this_thread((self.period_s() * 1e9) as i64);
+        let start = times.start;
         if crate::ndk_dl::get().thermal_acquire.is_some() {
             let (tx, rx) = mpsc::channel::<()>();
             let thread = std::thread::Builder::new()
@@ -165,125 +157,79 @@ impl Soak {
                 Err(e) => log::warn!("cannot start the thermal thread: {e}"),
             }
         }
+        Run {
+            rec: Recorder::new(rec_cfg, start),
+            writer,
+            config,
+        }
     }
 
-    /// Records one presented frame: `work_start` when the frame's work began (after the
-    /// swapchain image was acquired), `cpu_ms` update..encode, `submit_ms` submit + present,
-    /// `presented` right after `present` returned; `model` the tier the session's governor
-    /// drew, `needs` what the frame needed, `governor_changes` the governor's changes so far.
-    #[allow(clippy::too_many_arguments)]
+    /// Records one presented frame: its times, the GPU times the driver harvested this
+    /// frame, and what the session drew. The first frame after a pause restarts the clock.
     pub fn frame(
         &mut self,
         gpu: &Gpu,
-        size: (u32, u32),
-        work_start: Instant,
-        cpu_ms: f64,
-        submit_ms: f64,
-        presented: Instant,
-        model: ShadingModel,
-        needs: Needs,
-        governor_changes: u64,
+        times: &FrameTimes,
+        harvested: &[(usize, f64)],
+        session: &Session,
     ) {
-        self.governor_changes = governor_changes;
-        self.begin(gpu);
-        self.size = size;
-        let start = self.start.unwrap_or(work_start);
-        if let Some(h) = &mut self.hint {
-            h.report((presented - work_start).as_nanos() as i64);
+        if self.run.is_none() {
+            let run = self.begin(gpu, times, session);
+            self.run = Some(run);
         }
-        let present_periods = self
-            .last_present
-            .map(|t| (presented - t).as_secs_f64() / self.period_s());
-        self.last_present = Some(presented);
-        let tier = self
-            .tiers
-            .as_slice()
-            .iter()
-            .position(|m| *m == model)
-            .unwrap_or(0);
-        if tier != self.last_tier && self.last_tier != usize::MAX {
-            self.tier_changes += 1;
-        }
-        self.last_tier = tier;
-        let t_s = presented.saturating_duration_since(start).as_secs_f64();
-        self.frames.push(FrameRec {
-            frame: self.frames.len(),
-            t_s,
-            cpu_ms,
-            submit_ms,
-            gpu_ms: None,
-            present_periods,
-            allocs: 0,
-            tier,
-            model: model.name(),
-            coverage: needs.coverage,
-            lit: needs.lit,
-        });
-        if t_s >= self.next_second {
-            self.next_second += 1.0;
-            let live = LiveObjects::read(&gpu.device);
-            self.buffers.0 = self.buffers.0.min(live.buffers);
-            self.buffers.1 = self.buffers.1.max(live.buffers);
-            match self.live_warm {
-                None if t_s >= self.warm_up_s => self.live_warm = Some(live),
-                Some(w) if !same_load_objects(&w, &live) => self.live_changes += 1,
-                _ => {}
-            }
-            let mut rec = SecondRec::of(
-                &self.frames[self.second_start..],
-                t_s,
-                self.last_second_t,
-                tier,
-                self.governor_changes,
+        let Some(run) = &mut self.run else { return };
+        if run.rec.is_paused() {
+            run.rec.resume(times.start);
+            log::info!(
+                "soak: clock resumed at {:.1} s",
+                run.rec.clock_s(times.start)
             );
-            rec.rss_mb = resident_mb(self.page);
-            self.seconds.push(rec);
-            self.second_start = self.frames.len();
-            self.last_second_t = t_s;
-            if self.seconds.len().is_multiple_of(WRITE_EVERY_S) {
-                if let Some(dir) = &self.cfg.out_dir {
-                    let r = report("running", &self.config(), &self.seconds, None);
-                    if let Err(e) = write_atomic(&dir.join("soak.json"), &r) {
-                        log::warn!("soak.json: {e}");
-                    }
-                }
+        }
+        if let Some(h) = &mut self.hint {
+            h.report((times.presented - times.start).as_nanos() as i64);
+        }
+        for &(f, ms) in harvested {
+            run.rec.gpu_time(f, ms);
+        }
+        let closed = run.rec.frame(soak_sample(times, session, true));
+        if let Some(second) = closed {
+            run.rec
+                .gpu_objects(second.t_s, LiveObjects::read(&gpu.device));
+            let mut batch = Vec::new();
+            run.rec.take_final(&mut batch);
+            run.writer.frames(batch);
+            run.writer.second(second);
+        }
+    }
+
+    /// A GPU time that arrived after the frames stopped (the driver's drain at the end).
+    pub fn gpu_time(&mut self, frame: usize, ms: f64) {
+        if let Some(run) = &mut self.run {
+            run.rec.gpu_time(frame, ms);
+        }
+    }
+
+    /// Stops the soak clock: the app was paused, lost focus or its window.
+    pub fn pause(&mut self) {
+        if let Some(run) = &mut self.run {
+            if !run.rec.is_paused() {
+                let now = Instant::now();
+                run.rec.pause(now);
+                log::info!("soak: clock paused at {:.1} s", run.rec.clock_s(now));
             }
         }
     }
 
-    /// Whether the run's time is up.
+    /// Whether the run's soak-clock time is up.
     pub fn done(&self) -> bool {
-        self.start
-            .is_some_and(|s| s.elapsed().as_secs_f64() >= self.cfg.seconds)
-    }
-
-    fn config(&self) -> Value {
-        json!({
-            "platform": "android",
-            "android_sdk": android_activity::AndroidApp::sdk_version(),
-            "device": device_name(),
-            "adapter": self.adapter,
-            "cpu_rasterizer": false,
-            "seconds": self.cfg.seconds,
-            "size": [self.size.0, self.size.1],
-            "target_fps": self.cfg.target_fps,
-            "budget_ms": 1000.0 / self.cfg.target_fps,
-            "uncapped": false,
-            "shading": self.cfg.shading.name(),
-            "tiers": self.tiers.as_slice().iter().map(|m| m.name()).collect::<Vec<_>>(),
-            "governor": false,
-            "scheduling": false,
-            "gpu_timestamps": false,
-            "warm_up_s": self.warm_up_s,
-            "scenario": self.cfg.scenario,
-            "present_mode": "Fifo",
-        })
+        self.run
+            .as_ref()
+            .is_some_and(|r| r.rec.done(Instant::now()))
     }
 
     /// Ends the run: stops the thermal thread, computes the summary, logs it and returns the
-    /// complete report.
-    pub fn finish(&mut self, device: &wgpu::Device, runs: u32) -> Value {
-        let elapsed = self.start.map_or(0.0, |s| s.elapsed().as_secs_f64());
+    /// complete report (`None` if no frame was ever drawn).
+    pub fn finish(&mut self, device: &wgpu::Device, runs: u32) -> Option<Value> {
         let thermal = match self.thermal.take() {
             Some((tx, h)) => {
                 drop(tx);
@@ -292,33 +238,22 @@ impl Soak {
             None => Vec::new(),
         };
         let hint = self.hint.take().is_some();
-        let live_end = LiveObjects::read(device);
-        if let Some(w) = self.live_warm {
-            if !same_load_objects(&w, &live_end) {
-                self.live_changes += 1;
-            }
-        }
-        if self.buffers.0 > self.buffers.1 {
-            self.buffers = (live_end.buffers, live_end.buffers);
-        }
-        let summary = summarize(&SummaryInput {
-            frames: &self.frames,
-            seconds: &self.seconds,
-            elapsed,
-            budget_ms: 1000.0 / self.cfg.target_fps,
-            warm_up_s: self.warm_up_s,
-            tiers: self.tiers.as_slice(),
-            governor_changes: self.governor_changes,
-            tier_changes: self.tier_changes,
-            live_warm: self.live_warm,
-            live_end,
-            live_changes: self.live_changes,
-            buffers: self.buffers,
-            untimed: self.frames.len() as u64,
-            runs,
+        let Run {
+            mut rec,
+            writer,
+            config,
+        } = self.run.take()?;
+        let elapsed = rec.clock_s(Instant::now());
+        rec.finish_frames();
+        let mut batch = Vec::new();
+        rec.take_final(&mut batch);
+        writer.frames(batch);
+        let seconds = writer.finish().unwrap_or_else(|e| {
+            log::warn!("soak: {e}");
+            Vec::new()
         });
-        let config = self.config();
-        for line in dermis_core::soak::summary_lines(&config, &summary) {
+        let summary = rec.summary(&seconds, elapsed, LiveObjects::read(device), runs);
+        for line in summary_lines(&config, &summary) {
             log::info!("soak: {line}");
         }
         let statuses: Vec<i32> = thermal.iter().filter_map(|s| s.status).collect();
@@ -337,10 +272,10 @@ impl Soak {
             "thermal_headroom_max": headroom.iter().copied().reduce(f32::max),
         });
         log::info!("soak: {android}");
-        let mut r = report("complete", &config, &self.seconds, Some(&summary));
+        let mut r = report("complete", &config, &seconds, Some(&summary));
         r["thermal"] = json!(thermal);
         r["android"] = android;
-        r
+        Some(r)
     }
 }
 

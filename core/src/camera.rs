@@ -5,7 +5,7 @@
 //! is sampled). After each step the eye is pushed out of the character's bounding capsule.
 
 use glam::camera::rh::{proj::directx, view};
-use glam::{Mat4, Vec3};
+use glam::{Mat4, Vec2, Vec3, Vec4};
 
 /// A vertical capsule around the character (segment from `base` up `height`, radius `radius`).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -129,10 +129,18 @@ impl FollowCamera {
         self.look.reset(look);
     }
 
+    /// A look-at target further than this (m) from the camera's is a teleport — a new run, a
+    /// respawn — and the camera snaps to it: chasing it would show a second of empty floor.
+    pub const SNAP_DISTANCE: f32 = 8.0;
+
     /// Follows the character (feet `position`, facing `yaw` about +Y) for `dt` seconds and keeps
-    /// the eye outside `capsule`.
+    /// the eye outside `capsule`; snaps when the character teleported ([`Self::SNAP_DISTANCE`]).
     pub fn update(&mut self, dt: f32, position: Vec3, yaw: f32, capsule: &Capsule) {
         let (eye, look) = self.desired(position, yaw);
+        if look.distance(self.look.value) > Self::SNAP_DISTANCE {
+            self.snap(position, yaw);
+            return;
+        }
         self.eye.step(eye, dt);
         self.look.step(look, dt);
         if capsule.contains(self.eye.value) {
@@ -146,6 +154,49 @@ impl FollowCamera {
 
     pub fn view_proj(&self, aspect: f32) -> Mat4 {
         directx::perspective(self.fov_y, aspect.max(1e-3), self.near, self.far) * self.view()
+    }
+
+    /// Where the camera is now, as drawn (no lens shift).
+    pub fn pose(&self) -> CameraPose {
+        CameraPose {
+            eye: self.eye.value,
+            look: self.look.value,
+            fov_y: self.fov_y,
+            shift: Vec2::ZERO,
+            near: self.near,
+            far: self.far,
+        }
+    }
+}
+
+/// A camera as drawn: eye, look-at point, vertical field of view, clip planes and a lens
+/// shift (the image moved by `shift` in normalised device coordinates, x right, y up, so the
+/// look-at point lands off centre without turning the camera).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CameraPose {
+    pub eye: Vec3,
+    pub look: Vec3,
+    pub fov_y: f32,
+    pub shift: Vec2,
+    pub near: f32,
+    pub far: f32,
+}
+
+impl CameraPose {
+    pub fn view(&self) -> Mat4 {
+        view::look_at_mat4(self.eye, self.look, Vec3::Y)
+    }
+
+    pub fn view_proj(&self, aspect: f32) -> Mat4 {
+        let shift = Mat4::from_cols(
+            Vec4::X,
+            Vec4::Y,
+            Vec4::Z,
+            Vec4::new(self.shift.x, self.shift.y, 0.0, 1.0),
+        );
+        shift
+            * directx::perspective(self.fov_y, aspect.max(1e-3), self.near, self.far)
+            * self.view()
     }
 }
 

@@ -10,6 +10,7 @@ pub mod asset;
 pub mod camera;
 pub mod game;
 pub mod governor;
+pub mod heap;
 pub mod lifecycle;
 pub mod mc;
 pub mod pool;

@@ -6,7 +6,7 @@ use std::path::Path;
 use glam::{Mat4, Quat, Vec3};
 
 use crate::anim::{first_skinned_mesh, skin_positions, Pose};
-use crate::asset::{load_gltf, AssetError, Model};
+use crate::asset::{load_gltf, load_gltf_slice, AssetError, Model};
 use crate::render::{PropInstance, PropKind};
 
 /// Everything the demo and the game load at start (nothing is read from disk later).
@@ -16,16 +16,46 @@ pub struct SceneAssets {
 }
 
 impl SceneAssets {
-    /// Loads `character` (or `assets/character.glb`) and every prop in `assets/props/`.
+    /// The character's file, relative to the assets root.
+    pub const CHARACTER: &'static str = "character.glb";
+
+    /// Loads `character` (or `assets/character.glb`) and every prop in `assets/props/` from
+    /// the file system (with the loader's size and file-type checks).
     pub fn load(assets_dir: &Path, character: Option<&Path>) -> Result<Self, AssetError> {
-        let default = assets_dir.join("character.glb");
-        let character = load_gltf(character.unwrap_or(&default))?;
-        let mut props = Vec::new();
-        for kind in PropKind::ALL {
-            let path = assets_dir.join("props").join(kind.file());
-            props.push((kind, load_gltf(&path)?));
-        }
-        Ok(Self { character, props })
+        let default = assets_dir.join(Self::CHARACTER);
+        Ok(Self {
+            character: load_gltf(character.unwrap_or(&default))?,
+            props: Self::props(&|path| load_gltf(&assets_dir.join(path)))?,
+        })
+    }
+
+    /// Loads the character and every prop through `read`, which maps a path relative to the
+    /// assets root (`/`-separated) to the file's bytes: the Android app's asset manager. A
+    /// model's external files resolve relative to its folder.
+    pub fn load_with(read: &dyn Fn(&str) -> Result<Vec<u8>, String>) -> Result<Self, AssetError> {
+        let model = |path: &str| -> Result<Model, AssetError> {
+            let bytes = read(path).map_err(|e| AssetError::new(path, e))?;
+            let dir = path.rsplit_once('/').map_or("", |(d, _)| d);
+            let resolve = |uri: &str| match dir {
+                "" => read(uri),
+                _ => read(&format!("{dir}/{uri}")),
+            };
+            load_gltf_slice(&bytes, path, &resolve)
+        };
+        Ok(Self {
+            character: model(Self::CHARACTER)?,
+            props: Self::props(&model)?,
+        })
+    }
+
+    /// Every prop, `props/<PropKind::file()>`, loaded by `load`.
+    fn props(
+        load: &dyn Fn(&str) -> Result<Model, AssetError>,
+    ) -> Result<Vec<(PropKind, Model)>, AssetError> {
+        PropKind::ALL
+            .iter()
+            .map(|&kind| Ok((kind, load(&format!("props/{}", kind.file()))?)))
+            .collect()
     }
 }
 

@@ -47,6 +47,9 @@ pub struct StillRenderer {
     pose: Pose,
     material: Option<Material>,
     timer: Option<PassTimer>,
+    /// Blob shadows built ([`Self::enable_blob_shadows`]): each shot restages the
+    /// character's blob.
+    shadows: bool,
 }
 
 impl StillRenderer {
@@ -76,7 +79,19 @@ impl StillRenderer {
             pose: Pose::new(&assets.character),
             material: None,
             timer: PassTimer::new(&gpu.device, &gpu.queue),
+            shadows: false,
         })
+    }
+
+    /// Builds and switches on the renderer's blob shadows under the character and the
+    /// showroom props (drawn only in shots with props); returns whether they exist. Stills
+    /// have none unless this is called; `renderer.set_blob_shadows` switches them.
+    pub fn enable_blob_shadows(&mut self, gpu: &Gpu) -> bool {
+        self.shadows = self.renderer.enable_blob_shadows(gpu);
+        if self.shadows {
+            self.renderer.set_props(&gpu.queue, &showroom());
+        }
+        self.shadows
     }
 
     /// Poses the character, places camera and light, writes uniforms; returns the view.
@@ -119,6 +134,10 @@ impl StillRenderer {
         let (wlo, whi) = (world.transform_point3(lo), world.transform_point3(hi));
         self.renderer
             .update_character(&gpu.queue, model, &self.pose, world);
+        if self.shadows {
+            // Uploads the character's blob (the props' are unchanged).
+            self.renderer.set_props(&gpu.queue, &showroom());
+        }
         let (w, h) = (self.offscreen.targets.width, self.offscreen.targets.height);
         let aspect = w as f32 / h as f32;
         let fov = 40f32.to_radians();
@@ -185,6 +204,17 @@ impl StillRenderer {
 
     /// Renders only the character pass with timestamps around it; returns GPU milliseconds.
     pub fn time_character_pass(&mut self, gpu: &Gpu, shading: Option<ShadingModel>) -> Option<f64> {
+        self.time_pass(gpu, shading, false)
+    }
+
+    /// Renders the character, with the props (and their blob shadows, when on) if `props`,
+    /// with timestamps around the scene passes; returns GPU milliseconds.
+    pub fn time_pass(
+        &mut self,
+        gpu: &Gpu,
+        shading: Option<ShadingModel>,
+        props: bool,
+    ) -> Option<f64> {
         let timer = self.timer.as_ref()?;
         let mut encoder = gpu
             .device
@@ -192,7 +222,7 @@ impl StillRenderer {
         let draw = DrawSet {
             shading,
             character: true,
-            props: false,
+            props,
         };
         self.renderer.encode(
             &mut encoder,

@@ -120,3 +120,56 @@ fn missing_file_is_an_error() {
     let e = load_gltf(&common::data_dir().join("nope.glb")).unwrap_err();
     assert!(e.to_string().contains("nope.glb"));
 }
+
+/// The project's scene through the reader-based loader the Android app uses (its asset
+/// manager stands in as a closure over `assets/`) is the scene the desktop's file loader
+/// gives; a missing prop is an error naming it.
+#[test]
+fn scene_through_a_reader_is_the_scene_from_files() {
+    use dermis_core::scene::SceneAssets;
+    let root = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../assets");
+    let asked = std::cell::RefCell::new(Vec::new());
+    let read = |path: &str| -> Result<Vec<u8>, String> {
+        asked.borrow_mut().push(path.to_owned());
+        std::fs::read(root.join(path)).map_err(|e| e.to_string())
+    };
+    let a = SceneAssets::load_with(&read).unwrap();
+    let b = SceneAssets::load(&root, None).unwrap();
+    assert_eq!(asked.borrow()[0], SceneAssets::CHARACTER);
+    assert!(asked.borrow().iter().any(|p| p.starts_with("props/")));
+    let shape = |m: &Model| {
+        let verts: usize = m
+            .meshes
+            .iter()
+            .flat_map(|x| &x.primitives)
+            .map(|p| p.vertices.len())
+            .sum();
+        (
+            m.nodes.len(),
+            m.skins.len(),
+            m.textures.len(),
+            m.animations.len(),
+            verts,
+        )
+    };
+    assert_eq!(shape(&a.character), shape(&b.character));
+    assert_eq!(a.props.len(), b.props.len());
+    for ((ka, ma), (kb, mb)) in a.props.iter().zip(&b.props) {
+        assert_eq!(ka, kb);
+        assert_eq!(shape(ma), shape(mb));
+    }
+    let no_props = |path: &str| -> Result<Vec<u8>, String> {
+        if path.starts_with("props/") {
+            Err("not in the APK's assets".into())
+        } else {
+            read(path)
+        }
+    };
+    let e = SceneAssets::load_with(&no_props)
+        .err()
+        .expect("a missing prop fails");
+    assert!(
+        e.file.starts_with("props/") && e.problem.contains("not in the APK"),
+        "{e}"
+    );
+}

@@ -28,6 +28,11 @@ fn all_shaders() -> Vec<(String, String)> {
         compose("sss_pass", &ShaderDefs::new()).unwrap(),
     ));
     out.push(("ui".into(), compose("ui", &ShaderDefs::new()).unwrap()));
+    out.push((
+        "shadow".into(),
+        compose("shadow", &ShaderDefs::new()).unwrap(),
+    ));
+    out.push(("shadow/split".into(), compose("shadow", &split).unwrap()));
     out
 }
 
@@ -105,7 +110,7 @@ fn every_module_file_is_used() {
 
 #[test]
 fn props_and_ui_carry_no_subsurface_code() {
-    for entry in ["prop", "ui"] {
+    for entry in ["prop", "ui", "shadow"] {
         let src = compose(entry, &ShaderDefs::new()).unwrap();
         for module in [
             "dipole",

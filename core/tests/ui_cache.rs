@@ -205,10 +205,10 @@ fn game_screens_cycle_the_model_start_and_replay() {
     let rebuilds = ui.rebuilds();
     frame(&mut ui, &mut game, &mut settings);
     assert_eq!(ui.rebuilds(), rebuilds, "the main screen is static");
-    // The option button sits at the top of the centred panel: find it by clicking its centre.
-    let option = ui.anchored(Anchor::Center, [0.0, 20.0], [340.0, 250.0]);
-    let option = Anchor::Top.place(option, [0.0, 24.0], [300.0, 56.0]);
-    let start = option.below(16.0);
+    // The menu's panel stands beside the showroom's character (game::showroom): its buttons,
+    // in declaration order, are the model option and start.
+    let buttons: Vec<Rect> = ui.button_rects().collect();
+    let (option, start) = (buttons[0], buttons[1]);
     let mut seen = Vec::new();
     for _ in 0..ShadingModel::ALL.len() {
         seen.push(settings.shading_model());

@@ -11,7 +11,7 @@ use dermis_core::still::{Shot, StillRenderer};
 use serde_json::json;
 
 use crate::cmd::args::{check_out_file, parse_bench_frames, parse_rounds};
-use crate::cmd::gputime::{frame_close_up, time_models};
+use crate::cmd::gputime::{blob_shadow_coverage, frame_close_up, time_blob_shadows, time_models};
 use crate::cmd::progress::Progress;
 use crate::cmd::stats::{median, percentile, ratio_ci};
 
@@ -23,11 +23,12 @@ pub struct BenchArgs {
 
 #[derive(clap::Subcommand, Debug)]
 pub enum BenchKind {
-    /// Time to first frame, CPU time per frame, and each model's GPU time for a close-up
-    /// character pass as a ratio to `ward`.
+    /// Time to first frame, CPU time per frame, each model's GPU time for a close-up
+    /// character pass as a ratio to `ward`, and the cost of blob shadows on that pass with
+    /// the floor (on/off ratio).
     Frame {
         /// Rounds of GPU timing, at least 2 (each round times every model once, in rotating
-        /// order).
+        /// order, then the blob-shadow models off and on, in alternating order).
         #[arg(long, default_value_t = 30, value_parser = parse_rounds, allow_negative_numbers = true)]
         rounds: usize,
         /// Frames for the CPU timing (at least 10).
@@ -70,8 +71,9 @@ fn frame(
         check_out_file(path, None)?;
     }
     let start = Instant::now();
-    // Steps: first frame, close-up, the CPU frames (in eighths), the GPU rounds.
-    let mut progress = Progress::new("bench frame", (2 + 8 + rounds) as u64);
+    // Steps: first frame, close-up, the CPU frames (in eighths), the GPU rounds, the blob
+    // shadows' coverage and their rounds.
+    let mut progress = Progress::new("bench frame", (3 + 8 + 2 * rounds) as u64);
     let assets = SceneAssets::load(&crate::paths::assets_dir(), None).map_err(|e| e.to_string())?;
     let gpu = Gpu::headless().map_err(|e| e.to_string())?;
     let (w, h) = (1280, 720);
@@ -149,6 +151,25 @@ fn frame(
     } else {
         vec![Vec::new(); models.len()]
     };
+
+    // Blob shadows: the same close-up with the showroom floor (and its props), shadows off
+    // vs on, for a one-pass and a screen-space model.
+    let blob_models = [ShadingModel::Ward, ShadingModel::Burley];
+    let (blob_pixels, blob_ms) = if still.enable_blob_shadows(&gpu) {
+        let pixels = blob_shadow_coverage(&gpu, &mut still, &assets, &close)?;
+        progress.step("blob shadows framed");
+        still.setup(&gpu, &assets, &close)?;
+        let ms = if gpu.timestamps {
+            time_blob_shadows(&gpu, &mut still, &blob_models, rounds, || {
+                progress.step("blob-shadow rounds")
+            })?
+        } else {
+            Vec::new()
+        };
+        (Some(pixels), ms)
+    } else {
+        (None, Vec::new())
+    };
     progress.finish();
     let name = |m: &Option<ShadingModel>| m.map_or("unlit", |m| m.name());
     let ward = &gpu_ms[0];
@@ -158,6 +179,21 @@ fn frame(
         .map(|(m, ms)| {
             let (ratio, lo, hi) = ratio_ci(ms, ward);
             json!({"model": name(m), "gpu_ms_median": median(ms), "ratio_to_ward": ratio, "ratio_ci95": [lo, hi]})
+        })
+        .collect();
+    let blob_shadows: Vec<serde_json::Value> = blob_models
+        .iter()
+        .zip(&blob_ms)
+        .map(|(m, [off, on])| {
+            let (ratio, lo, hi) = ratio_ci(on, off);
+            json!({
+                "model": m.name(),
+                "off_ms_median": median(off),
+                "on_ms_median": median(on),
+                "ratio_on_off": ratio,
+                "ratio_ci95": [lo, hi],
+                "ci_contains_1": lo <= 1.0 && 1.0 <= hi,
+            })
         })
         .collect();
     let label = if gpu.is_cpu() {
@@ -174,6 +210,8 @@ fn frame(
         "cpu_frame_ms": {"p50": percentile(&cpu_ms, 0.5), "p95": percentile(&cpu_ms, 0.95), "mean": cpu_ms.iter().sum::<f64>() / cpu_ms.len() as f64},
         "gpu_rounds": if gpu.timestamps { rounds } else { 0 },
         "models": per_model,
+        "blob_shadow_pixels": blob_pixels,
+        "blob_shadows": blob_shadows,
     });
     let text = serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?;
     if let Some(path) = &out {
@@ -215,6 +253,39 @@ fn frame(
                 v["ratio_ci95"][0].as_f64().unwrap_or(f64::NAN),
                 v["ratio_ci95"][1].as_f64().unwrap_or(f64::NAN)
             ),
+        );
+    }
+    match blob_pixels {
+        None => println!("blob shadows: none (nothing casts)"),
+        Some(pixels) => println!(
+            "close-up pass with the floor, blob shadows off vs on (they shade {:.1} % of the frame):",
+            pixels * 100.0
+        ),
+    }
+    if !blob_shadows.is_empty() {
+        println!(
+            "  {:<15} {:>9} {:>9} {:>8} {:>18}  cost",
+            "model", "off ms", "on ms", "on/off", "95 % CI"
+        );
+    }
+    for v in &blob_shadows {
+        let f = |k: &str| v[k].as_f64().unwrap_or(f64::NAN);
+        let (lo, hi) = (
+            v["ratio_ci95"][0].as_f64().unwrap_or(f64::NAN),
+            v["ratio_ci95"][1].as_f64().unwrap_or(f64::NAN),
+        );
+        println!(
+            "  {:<15} {:>9.3} {:>9.3} {:>8.3} {:>18}  {}",
+            v["model"].as_str().unwrap_or("?"),
+            f("off_ms_median"),
+            f("on_ms_median"),
+            f("ratio_on_off"),
+            format!("[{lo:.3}, {hi:.3}]"),
+            if v["ci_contains_1"].as_bool() == Some(true) {
+                "none measurable (CI contains 1)"
+            } else {
+                "measurable (CI excludes 1)"
+            },
         );
     }
     Ok(())

@@ -6,7 +6,7 @@ use std::path::Path;
 use std::sync::Once;
 
 use dermis_core::shading::ShadingModel;
-use dermis_core::soak::{FrameRec, SecondRec};
+use dermis_core::soak::SecondRec;
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -65,10 +65,10 @@ fn panel<'a, DB: DrawingBackend>(
     Ok(c)
 }
 
-/// The soak's chart (`dermis soak`'s `soak.png`): frame time (CPU, GPU, budget), tier and
-/// resident memory over time, three panels.
+/// The soak's chart (`dermis soak`'s `soak.png`), from the per-second records: frame time
+/// (CPU mean and max, GPU mean and max, the budget), the tier, and memory (resident, C
+/// allocator in use, Rust heap) over time, three panels.
 pub fn soak_png(
-    frames: &[FrameRec],
     seconds: &[SecondRec],
     tiers: &[ShadingModel],
     budget_ms: f64,
@@ -79,20 +79,33 @@ pub fn soak_png(
     let root = BitMapBackend::new(path, (1200, 900)).into_drawing_area();
     root.fill(&WHITE).map_err(|x| e(&x))?;
     let panels = root.split_evenly((3, 1));
-    let t_max = frames.last().map_or(1.0, |f| f.t_s).max(1.0);
-    let cpu: Vec<(f64, f64)> = frames.iter().map(|f| (f.t_s, f.cpu_ms)).collect();
-    let gpu: Vec<(f64, f64)> = frames
-        .iter()
-        .filter_map(|f| f.gpu_ms.map(|g| (f.t_s, g)))
-        .collect();
-    let all: Vec<f64> = cpu.iter().chain(&gpu).map(|p| p.1).collect();
-    let y_max = percentile(&all, 0.995).max(budget_ms) * 1.3;
-    let mut c = panel(&panels[0], "Frame time", t_max, 0.0..y_max.max(1.0), "ms")?;
+    let t_max = seconds.last().map_or(1.0, |s| s.t_s).max(1.0);
+    let series = |pick: fn(&SecondRec) -> Option<f64>| -> Vec<(f64, f64)> {
+        seconds
+            .iter()
+            .filter_map(|s| pick(s).filter(|v| v.is_finite()).map(|v| (s.t_s, v)))
+            .collect()
+    };
+    let cpu_mean = series(|s| Some(s.cpu_ms_mean));
+    let cpu_max = series(|s| Some(s.cpu_ms_max));
+    let gpu_mean = series(|s| s.gpu_ms_mean);
+    let gpu_max = series(|s| s.gpu_ms_max);
+    let all: Vec<f64> = cpu_max.iter().chain(&gpu_max).map(|p| p.1).collect();
+    let y_max = percentile(&all, 0.99).max(budget_ms) * 1.3;
+    let mut c = panel(
+        &panels[0],
+        "Frame time (per second)",
+        t_max,
+        0.0..y_max.max(1.0),
+        "ms",
+    )?;
     let budget = vec![(0.0, budget_ms), (t_max, budget_ms)];
     for (points, line, key, label) in [
-        (cpu, BLUE.to_rgba(), BLUE, "CPU"),
-        (gpu, RED.to_rgba(), RED, "GPU"),
-        (budget, BLACK.mix(0.5), BLACK, "budget"),
+        (cpu_max, BLUE.mix(0.35), BLUE.mix(0.35), "CPU max"),
+        (cpu_mean, BLUE.to_rgba(), BLUE.to_rgba(), "CPU mean"),
+        (gpu_max, RED.mix(0.35), RED.mix(0.35), "GPU max"),
+        (gpu_mean, RED.to_rgba(), RED.to_rgba(), "GPU mean"),
+        (budget, BLACK.mix(0.5), BLACK.mix(0.5), "budget"),
     ] {
         c.draw_series(LineSeries::new(
             points.into_iter().map(|(t, v)| (t, v.min(y_max))),
@@ -113,25 +126,45 @@ pub fn soak_png(
     let caption = format!("Shading tier (0 = {})", names.join(", "));
     let mut c = panel(&panels[1], &caption, t_max, -0.5..top, "tier")?;
     c.draw_series(LineSeries::new(
-        frames.iter().map(|f| (f.t_s, f.tier as f64)),
+        seconds.iter().map(|s| (s.t_s, s.tier as f64)),
         &GREEN,
     ))
     .map_err(|x| e(&x))?;
 
-    let mem: Vec<(f64, f64)> = seconds
+    let mem = [
+        (series(|s| s.rss_mb), MAGENTA.to_rgba(), "resident"),
+        (
+            series(|s| s.malloc_mb),
+            RGBColor(230, 120, 0).to_rgba(),
+            "C allocator in use",
+        ),
+        (series(|s| s.rust_heap_mb), CYAN.to_rgba(), "Rust heap"),
+    ];
+    let (lo, hi) = mem
         .iter()
-        .filter_map(|s| s.rss_mb.map(|m| (s.t_s, m)))
-        .collect();
-    let (lo, hi) = mem.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |a, p| {
-        (a.0.min(p.1), a.1.max(p.1))
-    });
+        .flat_map(|m| m.0.iter())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |a, p| {
+            (a.0.min(p.1), a.1.max(p.1))
+        });
     let (lo, hi) = if lo.is_finite() {
-        (lo - 1.0 - 0.05 * (hi - lo), hi + 1.0 + 0.05 * (hi - lo))
+        (
+            (lo - 1.0 - 0.05 * (hi - lo)).max(0.0),
+            hi + 1.0 + 0.05 * (hi - lo),
+        )
     } else {
         (0.0, 1.0)
     };
-    let mut c = panel(&panels[2], "Resident memory", t_max, lo..hi, "MiB")?;
-    c.draw_series(LineSeries::new(mem, &MAGENTA))
+    let mut c = panel(&panels[2], "Memory", t_max, lo..hi, "MiB")?;
+    for (points, color, label) in mem {
+        c.draw_series(LineSeries::new(points, color))
+            .map_err(|x| e(&x))?
+            .label(label)
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color));
+    }
+    c.configure_series_labels()
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .draw()
         .map_err(|x| e(&x))?;
     root.present().map_err(|x| e(&x))?;
     Ok(())

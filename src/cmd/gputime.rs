@@ -66,3 +66,64 @@ pub fn time_models(
     }
     Ok(out)
 }
+
+/// `rounds` timings (ms) of the close-up pass with the showroom props (the floor) for each of
+/// `models`, blob shadows off (`[0]`) and on (`[1]`); the pair's order alternates by round
+/// and model. The still's blob shadows must be built
+/// ([`StillRenderer::enable_blob_shadows`]); they are left on.
+pub fn time_blob_shadows(
+    gpu: &Gpu,
+    still: &mut StillRenderer,
+    models: &[ShadingModel],
+    rounds: usize,
+    mut tick: impl FnMut(),
+) -> Result<Vec<[Vec<f64>; 2]>, String> {
+    let mut out = vec![[Vec::with_capacity(rounds), Vec::with_capacity(rounds)]; models.len()];
+    for on in [false, true] {
+        still.renderer.set_blob_shadows(on);
+        still.time_pass(gpu, Some(ShadingModel::Ward), true);
+    }
+    for r in 0..rounds {
+        for k in 0..models.len() {
+            let i = (k + r) % models.len();
+            for j in 0..2 {
+                let on = (j + k + r) % 2 == 1;
+                still.renderer.set_blob_shadows(on);
+                out[i][usize::from(on)].push(
+                    still
+                        .time_pass(gpu, Some(models[i]), true)
+                        .ok_or("timestamp read failed")?,
+                );
+            }
+        }
+        tick();
+    }
+    still.renderer.set_blob_shadows(true);
+    Ok(out)
+}
+
+/// The fraction of the frame's pixels that blob shadows change in `shot` (drawn with the
+/// props): whether the blobs are in view at all. The still's blob shadows must be built;
+/// they are left on.
+pub fn blob_shadow_coverage(
+    gpu: &Gpu,
+    still: &mut StillRenderer,
+    assets: &SceneAssets,
+    shot: &Shot,
+) -> Result<f64, String> {
+    let shot = Shot {
+        props: true,
+        ..*shot
+    };
+    still.renderer.set_blob_shadows(false);
+    let off = still.render(gpu, assets, &shot)?;
+    still.renderer.set_blob_shadows(true);
+    let on = still.render(gpu, assets, &shot)?;
+    let changed = off
+        .pixels
+        .chunks_exact(4)
+        .zip(on.pixels.chunks_exact(4))
+        .filter(|(a, b)| a[..3] != b[..3])
+        .count();
+    Ok(changed as f64 / (off.width * off.height) as f64)
+}

@@ -10,12 +10,12 @@ use dermis_core::scene::SceneAssets;
 use dermis_core::shading::ShadingModel;
 use serde_json::json;
 
-use crate::alloc_count::allocations;
 use crate::cli::parse_model;
 use crate::cmd::args::{check_out_dir, parse_fps, parse_play_frames, prealloc, shading_help};
 use crate::cmd::progress::Progress;
 use crate::cmd::render::parse_size;
 use crate::cmd::stats::{median, percentile};
+use dermis_core::heap::allocations;
 
 #[derive(clap::Args, Debug)]
 pub struct PlayArgs {

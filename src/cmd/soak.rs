@@ -12,55 +12,56 @@
 //!
 //! # GPU time
 //! Timestamps are written by two empty compute passes bracketing the frame's single render
-//! pass (the renderer's pass takes only the blocking `PassTimer`), resolved into the
-//! [`TimerRing`]'s query/readback buffer pairs and mapped asynchronously; a frame's GPU time is
-//! filled in when its buffer is found mapped a few frames later. Nothing waits for a readback:
-//! when every slot is still in flight the frame goes untimed (`gpu_ms: null`).
+//! pass, resolved into the frame driver's `TimerRing` and mapped asynchronously; a frame's
+//! GPU time reaches the [`Recorder`] a few frames later. Nothing waits for a readback: when
+//! every slot is still in flight the frame goes untimed (`gpu_ms: null`).
 //!
 //! # Output (DIR)
-//! - `frames.jsonl`: one JSON object per frame, appended about once a second by a writer
-//!   thread: `frame`, `t_s` (submit time since start), `cpu_ms` (update + upload + encode:
-//!   the CPU frame time), `submit_ms` (the `queue.submit` call alone: drivers may block in it
-//!   while the GPU is busy, lavapipe does), `gpu_ms` (null: not timed), `present_periods` (interval since the previous
-//!   submit / target period; null for the first frame), `allocs` (heap allocations during the
-//!   frame's work), `tier` (index in `config.tiers`), `model`, `coverage`, `lit`. Each batch
-//!   of whole lines is one write; a reader of a killed run's file drops a last line that has
-//!   no newline.
+//! The core's [`Recorder`] and [`Writer`] (the phone's soak uses the same two):
+//! - `frames.jsonl`: one JSON object per frame, appended about once a second by the writer
+//!   thread: `frame`, `t_s` (submit time on the soak clock), `cpu_ms` (update + upload +
+//!   encode: the CPU frame time), `submit_ms` (the `queue.submit` call alone: drivers may block
+//!   in it while the GPU is busy, lavapipe does), `gpu_ms` (null: not timed),
+//!   `present_periods` (interval since the previous submit / target period; null for the
+//!   first frame), `allocs` (heap allocations during the frame's work), `tier` (index in
+//!   `config.tiers`), `model`, `coverage`, `lit`. Each batch of whole lines is one write; a
+//!   reader of a killed run's file drops a last line that has no newline.
 //! - `soak.json`: rewritten atomically (temp file + rename) about once a second:
 //!   `{"format": "dermis-soak/1", "status": "running" | "complete", "config": {...},
-//!   "seconds": [{t_s, frames, fps, cpu_ms_mean, cpu_ms_max, gpu_ms_mean, rss_mb, tier,
-//!   governor_changes, allocs}], "summary": {...} (complete only)}`. A killed run keeps
-//!   `soak.json` up to its last second and `frames.jsonl` up to its last flush.
-//! - `soak.png`: frame time (CPU, GPU), tier and resident memory over time.
+//!   "seconds": [{t_s, frames, fps, cpu_ms_mean, cpu_ms_max, gpu_ms_mean, gpu_ms_max, rss_mb,
+//!   rust_heap_mb, malloc_mb, tier, governor_changes, allocs}], "summary": {...} (complete
+//!   only)}`. A killed run keeps `soak.json` up to its last second and `frames.jsonl` up to
+//!   its last flush.
+//! - `soak.png`: frame time (CPU, GPU), tier and memory over time, per second.
 //!
-//! Resident memory is sampled by the writer thread when it receives a second's record (off the
-//! game thread): `/proc/self/statm`'s resident pages × the page size (calibrated once against
-//! `/proc/self/status` VmRSS, 4 KiB when that fails); NaN outside Linux/Android.
+//! # Memory
+//! Sampled by the writer thread when it receives a second's record (off the game thread):
+//! resident (`/proc/self/statm`), the C allocator's bytes in use (glibc `mallinfo2`: the Rust
+//! heap plus the GPU driver's allocations) and the Rust heap's live bytes (the counting
+//! global allocator, `dermis_core::heap`). The recorder's own memory is fixed (histograms,
+//! frame counts per 0.1 s) and reported apart, so a growth in the first two is the engine's
+//! or the driver's, and the resident set adds the allocator's retention (glibc's per-thread
+//! arenas grow and trim in steps of megabytes).
 
-use std::fs::File;
-use std::io::Write;
 use std::path::PathBuf;
-use std::sync::mpsc;
 use std::time::{Duration, Instant};
 
-use dermis_core::game::{GameFrame, GameGpu, Session};
+use dermis_core::game::{soak_sample, GameFrame, GameGpu, Session};
 use dermis_core::governor::GovernorConfig;
+use dermis_core::heap::allocations;
 use dermis_core::render::{
-    Clock, FrameDriver, Gpu, LiveObjects, Offscreen, Output, TimerRing, OFFSCREEN_FORMAT,
+    Clock, FrameDriver, Gpu, LiveObjects, Offscreen, Output, OFFSCREEN_FORMAT,
 };
 use dermis_core::scene::SceneAssets;
 use dermis_core::shading::ShadingModel;
-use serde_json::{json, Value};
+use dermis_core::soak::{
+    config_json, report, summary_lines, write_atomic, Recorder, RecorderConfig, RunInfo, Writer,
+};
 
-use crate::alloc_count::allocations;
 use crate::cli::parse_model;
-use crate::cmd::args::{check_out_dir, parse_fps, parse_seconds, prealloc, shading_help};
+use crate::cmd::args::{check_out_dir, parse_fps, parse_seconds, shading_help};
 use crate::cmd::chart::soak_png;
 use crate::cmd::render::parse_size;
-use dermis_core::soak::{
-    page_bytes, report, resident_mb, summarize, summary_lines, write_atomic, FrameRec, SecondRec,
-    SummaryInput,
-};
 
 #[derive(clap::Args, Debug, Clone)]
 pub struct SoakArgs {
@@ -102,49 +103,6 @@ pub struct SoakArgs {
 /// Frames queued on the GPU at most (swapchain-like back-pressure).
 pub const FRAMES_IN_FLIGHT: usize = 2;
 
-enum Msg {
-    Frames(Vec<FrameRec>),
-    Second(SecondRec),
-}
-
-/// The writer thread: appends frames, samples memory, rewrites soak.json each second.
-fn writer(dir: PathBuf, config: Value, rx: mpsc::Receiver<Msg>) -> Result<Vec<SecondRec>, String> {
-    let page = page_bytes();
-    let path = dir.join("frames.jsonl");
-    let mut frames = File::create(&path).map_err(|e| format!("{}: {e}", path.display()))?;
-    let mut buf = Vec::new();
-    let mut seconds = Vec::new();
-    for msg in rx {
-        match msg {
-            Msg::Frames(batch) => {
-                // One write per batch of whole lines.
-                buf.clear();
-                for f in &batch {
-                    serde_json::to_writer(&mut buf, f).map_err(|e| e.to_string())?;
-                    buf.push(b'\n');
-                }
-                frames.write_all(&buf).map_err(|e| e.to_string())?;
-            }
-            Msg::Second(mut s) => {
-                s.rss_mb = resident_mb(page);
-                seconds.push(s);
-                write_atomic(
-                    &dir.join("soak.json"),
-                    &report("running", &config, &seconds, None),
-                )?;
-            }
-        }
-    }
-    Ok(seconds)
-}
-
-/// Whether the objects created only at load (pipelines, shader modules, bind groups,
-/// textures, views, samplers) are unchanged. Buffers are left out: `queue.write_buffer`'s
-/// staging buffers come and go with the frames in flight (their range is reported).
-fn same_load_objects(a: &LiveObjects, b: &LiveObjects) -> bool {
-    LiveObjects { buffers: 0, ..*a } == LiveObjects { buffers: 0, ..*b }
-}
-
 /// Sleeps until `deadline` (coarse sleep, then a short spin for precision).
 fn sleep_until(deadline: Instant) {
     loop {
@@ -176,7 +134,6 @@ pub fn run(args: SoakArgs) -> Result<(), String> {
         !args.no_governor,
         !args.no_scheduling,
     );
-    let tiers = *session.governor.tiers();
     let mut driver = FrameDriver::new(Clock::Wall {
         first: 1.0 / args.target_fps,
         min: 1e-4,
@@ -186,38 +143,26 @@ pub fn run(args: SoakArgs) -> Result<(), String> {
     .with_alloc_counter(allocations);
     driver.max_in_flight = Some(FRAMES_IN_FLIGHT);
 
-    let period = Duration::from_secs_f64(1.0 / args.target_fps);
-    let budget_ms = 1000.0 / args.target_fps;
-    let duration = Duration::from_secs_f64(args.seconds);
-    let warm_up_s = (args.seconds * 0.1).min(2.0);
-    let config = json!({
-        "adapter": gpu.adapter_name(),
-        "cpu_rasterizer": gpu.is_cpu(),
-        "seconds": args.seconds,
-        "size": [w, h],
-        "target_fps": args.target_fps,
-        "budget_ms": budget_ms,
-        "uncapped": args.uncapped,
-        "seed": args.seed,
-        "shading": session.shading().name(),
-        "tiers": tiers.as_slice().iter().map(|m| m.name()).collect::<Vec<_>>(),
-        "governor": session.governor.enabled,
-        "scheduling": session.governor.scheduling,
-        "gpu_timestamps": driver.timer().is_some(),
-        "timer_ring": TimerRing::SLOTS,
-        "frames_in_flight": FRAMES_IN_FLIGHT,
-        "warm_up_s": warm_up_s,
-    });
-
-    let (tx, rx) = mpsc::channel();
-    let writer_thread = {
-        let dir = args.out.clone();
-        let config = config.clone();
-        std::thread::Builder::new()
-            .name("soak writer".into())
-            .spawn(move || writer(dir, config, rx))
-            .map_err(|e| e.to_string())?
+    let rec_cfg = RecorderConfig {
+        seconds: args.seconds,
+        target_fps: args.target_fps,
+        tiers: session.governor.tiers().as_slice().to_vec(),
+        gpu_timed: driver.timer().is_some(),
     };
+    let run = RunInfo {
+        platform: "desktop",
+        adapter: gpu.adapter_name(),
+        cpu_rasterizer: gpu.is_cpu(),
+        size: (w, h),
+        uncapped: args.uncapped,
+        seed: args.seed,
+        shading: session.shading(),
+        governor: session.governor.enabled,
+        scheduling: session.governor.scheduling,
+        frames_in_flight: Some(FRAMES_IN_FLIGHT),
+    };
+    let config = config_json(&rec_cfg, &run);
+    let writer = Writer::start(Some(args.out.clone()), config.clone(), 1, args.seconds)?;
 
     let bar = indicatif::ProgressBar::new(args.seconds.ceil() as u64);
     bar.set_style(
@@ -225,95 +170,36 @@ pub fn run(args: SoakArgs) -> Result<(), String> {
             .map_err(|e| e.to_string())?,
     );
 
-    let expect_frames = (args.seconds * args.target_fps * 1.1) as u64 + 64;
-    let mut frames: Vec<FrameRec> = Vec::with_capacity(prealloc(expect_frames));
-    let mut sent = 0usize;
-    let mut second_start = 0usize;
-    let mut next_second = 1.0f64;
-    let mut last_second_t = 0.0f64;
-    let mut last_submit: Option<Instant> = None;
-    let mut live_warm: Option<LiveObjects> = None;
-    let mut live_changes = 0u64;
-    let mut buffers = (isize::MAX, isize::MIN);
-    let mut tier_changes = 0u64;
-    let mut last_tier = usize::MAX;
+    let period = Duration::from_secs_f64(1.0 / args.target_fps);
     let start = Instant::now();
-    while start.elapsed() < duration {
+    let mut rec = Recorder::new(rec_cfg, start);
+    while !rec.done(Instant::now()) {
         // Swapchain-like back-pressure (not part of the CPU frame time), update (the
         // session selects the tier), upload, encode timed, submit; the governor is fed.
         let times = GameFrame::new(&mut session, &mut gg, &assets.character)
             .run(&mut driver, &gpu, Output::Offscreen(&target))
             .map_err(|s| format!("frame not drawn: {s:?}"))?;
         for &(f, ms) in driver.harvested() {
-            if let Some(rec) = frames.get_mut(f) {
-                rec.gpu_ms = Some(ms);
-            }
+            rec.gpu_time(f, ms);
         }
-        let (tier, model, needs) = (session.tier(), session.drawn_model(), session.needs);
-        let frame = times.frame as usize;
-        let (cpu_ms, submit_ms) = (times.cpu_ms(), times.submit_ms());
-        let submit = times.submitted;
-        let allocs = times.allocs.done - times.allocs.start;
-        let present_periods =
-            last_submit.map(|t| (submit - t).as_secs_f64() / period.as_secs_f64());
-        last_submit = Some(submit);
-        if tier != last_tier && last_tier != usize::MAX {
-            tier_changes += 1;
-        }
-        last_tier = tier;
-        let t_s = (submit - start).as_secs_f64();
-        frames.push(FrameRec {
-            frame,
-            t_s,
-            cpu_ms,
-            submit_ms,
-            gpu_ms: None,
-            present_periods,
-            allocs,
-            tier,
-            model: model.name(),
-            coverage: needs.coverage,
-            lit: needs.lit,
-        });
+        let closed = rec.frame(soak_sample(&times, &session, false));
 
         // About once a second, outside the frame's measured work.
-        if t_s >= next_second {
-            next_second += 1.0;
-            let live = LiveObjects::read(&gpu.device);
-            buffers.0 = buffers.0.min(live.buffers);
-            buffers.1 = buffers.1.max(live.buffers);
-            match live_warm {
-                None if t_s >= warm_up_s => live_warm = Some(live),
-                Some(w) if !same_load_objects(&w, &live) => live_changes += 1,
-                _ => {}
-            }
-            let rec = SecondRec::of(
-                &frames[second_start..],
-                t_s,
-                last_second_t,
-                tier,
-                session.governor.changes(),
-            );
-            second_start = frames.len();
-            last_second_t = t_s;
-            let upto = driver
-                .timer()
-                .and_then(|r| r.oldest_pending())
-                .unwrap_or(frames.len())
-                .min(frames.len());
-            if upto > sent {
-                let _ = tx.send(Msg::Frames(frames[sent..upto].to_vec()));
-                sent = upto;
-            }
-            let _ = tx.send(Msg::Second(rec));
-            bar.set_position(t_s.floor() as u64);
+        if let Some(second) = closed {
+            rec.gpu_objects(second.t_s, LiveObjects::read(&gpu.device));
+            let mut batch = Vec::new();
+            rec.take_final(&mut batch);
+            writer.frames(batch);
+            writer.second(second);
+            bar.set_position(second.t_s.floor() as u64);
             bar.set_message(format!(
                 "{:.0} fps  cpu {:.1} ms  gpu {}  {}",
-                rec.fps,
-                rec.cpu_ms_mean,
-                rec.gpu_ms_mean
+                second.fps,
+                second.cpu_ms_mean,
+                second
+                    .gpu_ms_mean
                     .map_or("-".to_string(), |g| format!("{g:.1} ms")),
-                model.name()
+                session.drawn_model().name()
             ));
         }
 
@@ -324,50 +210,32 @@ pub fn run(args: SoakArgs) -> Result<(), String> {
             sleep_until(start + period.mul_f64(k));
         }
     }
-    let elapsed = start.elapsed().as_secs_f64();
+    let elapsed = rec.clock_s(Instant::now());
     bar.finish_and_clear();
     // Drain: wait for the GPU, read the last timestamps.
-    driver.drain(&gpu, |f, ms| {
-        if let Some(rec) = frames.get_mut(f) {
-            rec.gpu_ms = Some(ms);
-        }
-    });
-    let live_end = LiveObjects::read(&gpu.device);
-    if let Some(w) = live_warm {
-        if !same_load_objects(&w, &live_end) {
-            live_changes += 1;
-        }
-    }
-    if sent < frames.len() {
-        let _ = tx.send(Msg::Frames(frames[sent..].to_vec()));
-    }
-    drop(tx);
-    let seconds = writer_thread
-        .join()
-        .map_err(|_| "soak writer thread panicked".to_string())??;
-
-    let summary = summarize(&SummaryInput {
-        frames: &frames,
-        seconds: &seconds,
+    driver.drain(&gpu, |f, ms| rec.gpu_time(f, ms));
+    rec.finish_frames();
+    let mut batch = Vec::new();
+    rec.take_final(&mut batch);
+    writer.frames(batch);
+    let seconds = writer.finish()?;
+    let summary = rec.summary(
+        &seconds,
         elapsed,
-        budget_ms,
-        warm_up_s,
-        tiers: tiers.as_slice(),
-        governor_changes: session.governor.changes(),
-        tier_changes,
-        live_warm,
-        live_end,
-        live_changes,
-        buffers,
-        untimed: driver.timer().map_or(frames.len() as u64, |r| r.skipped),
-        runs: session.game.runs(),
-    });
+        LiveObjects::read(&gpu.device),
+        session.game.runs(),
+    );
     write_atomic(
         &args.out.join("soak.json"),
         &report("complete", &config, &seconds, Some(&summary)),
     )?;
     let chart = args.out.join("soak.png");
-    if let Err(e) = soak_png(&frames, &seconds, tiers.as_slice(), budget_ms, &chart) {
+    if let Err(e) = soak_png(
+        &seconds,
+        rec.config().tiers.as_slice(),
+        rec.config().budget_ms(),
+        &chart,
+    ) {
         log::warn!("chart not drawn: {e}");
     }
     for line in summary_lines(&config, &summary) {

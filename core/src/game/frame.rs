@@ -8,6 +8,7 @@ use super::{FrameInfo, GameGpu, Session, Viewport};
 use crate::asset::Model;
 use crate::lifecycle::FrameStatus;
 use crate::render::{FrameDriver, FrameOutput, FrameTimes, FrameWork, Gpu, Output, RenderStats};
+use crate::soak::FrameSample;
 use crate::ui::Insets;
 
 /// A hook run after a game frame's passes are recorded: the encoder, the session, the output.
@@ -95,5 +96,26 @@ impl FrameWork for GameFrame<'_> {
             hook(encoder, self.session, output);
         }
         self.stats
+    }
+}
+
+/// What the soak records of a game frame: its times (handed over at the submit offscreen, at
+/// the return of `present` on a surface, where the submit time includes the present) and
+/// what the session drew.
+pub fn soak_sample(times: &FrameTimes, session: &Session, surface: bool) -> FrameSample {
+    let (at, submit_ms) = if surface {
+        (times.presented, times.submit_present_ms())
+    } else {
+        (times.submitted, times.submit_ms())
+    };
+    FrameSample {
+        frame: times.frame as usize,
+        at,
+        cpu_ms: times.cpu_ms(),
+        submit_ms,
+        allocs: times.allocs.done - times.allocs.start,
+        model: session.drawn_model(),
+        needs: session.needs,
+        governor_changes: session.governor.changes(),
     }
 }

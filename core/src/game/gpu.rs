@@ -21,6 +21,8 @@ impl GameGpu {
         // Only what the game can reach: every menu model (the governor's tiers are among them).
         let mut renderer = Renderer::with_pipelines(gpu, format, &PipelineSet::game());
         renderer.load_scene(gpu, &assets.character, &assets.props, &SKIN1)?;
+        // Contact shadows under the runner and the props, so nothing floats.
+        renderer.enable_blob_shadows(gpu);
         let (rgba, w, h) = crate::ui::atlas_rgba();
         let ui = UiRenderer::new(&gpu.device, &gpu.queue, format, MSAA_SAMPLES, &rgba, w, h);
         Ok(Self { renderer, ui })

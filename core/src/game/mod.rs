@@ -16,15 +16,17 @@ pub mod rng;
 mod screens;
 pub mod session;
 mod settings;
+pub mod showroom;
 pub mod track;
 
 pub use bot::Bot;
-pub use frame::{AfterEncode, GameFrame};
+pub use frame::{soak_sample, AfterEncode, GameFrame};
 pub use gpu::GameGpu;
 pub use input::{Input, Swipe};
 pub use screens::{GameUi, UiOutcome};
 pub use session::{FrameInfo, Key, Session, Viewport};
 pub use settings::Settings;
+pub use showroom::{MenuLayout, Showroom};
 pub use track::{Chunk, Obstacle, ObstacleKind, LANE_WIDTH};
 
 use glam::{Mat4, Quat, Vec3};

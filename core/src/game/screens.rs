@@ -1,12 +1,14 @@
 //! The game's screens, drawn with the immediate-mode UI: main (title, shading-model option
-//! button, start, best score), play (score; when paused a "Paused" panel with Resume) and
-//! game over (score, best, replay), plus an optional frame-time overlay on every screen.
+//! button, start, best score; laid out beside or below the showroom's close-up of the
+//! character, see [`super::showroom`]), play (score; when paused a "Paused" panel with
+//! Resume) and game over (score, best, replay), plus an optional frame-time overlay on every
+//! screen.
 //! Text that changes is formatted into reused `String`s, so a frame allocates nothing.
 
 use std::fmt::Write;
 
-use super::{Game, Screen, Settings};
-use crate::ui::{Anchor, Color, Rect, Ui};
+use super::{showroom, Game, Screen, Settings};
+use crate::ui::{Anchor, Color, Ui};
 
 const TITLE: Color = [1.0, 0.86, 0.45, 1.0];
 const DIM: Color = [0.85, 0.88, 0.95, 1.0];
@@ -137,47 +139,38 @@ impl GameUi {
         ui.label_colored([r.x + 6.0, r.y + 4.0], text, size, [0.7, 1.0, 0.7, 1.0]);
     }
 
-    /// The main menu: title at the top, the hint on a dark strip at the bottom, the panel
-    /// between them. On a short safe area (a landscape phone with a keyboard, a 1280×300
-    /// window) the panel shrinks to its buttons and the title goes first, so nothing overlaps.
+    /// The main menu, laid out around the showroom's character ([`showroom::menu_layout`]):
+    /// landscape, the title and the panel in a column on the right; portrait, the title at
+    /// the top and the panel at the bottom; the hint on a dark strip at the bottom. On a short
+    /// safe area (a landscape phone with a keyboard, a 1280×300 window) the panel shrinks to
+    /// its buttons and the title goes first, so nothing overlaps.
     fn main(&mut self, ui: &mut Ui, game: &mut Game, settings: &mut Settings, out: &mut UiOutcome) {
-        const MARGIN: f32 = 12.0;
-        let safe = ui.safe_rect();
+        let layout = showroom::menu_layout(
+            ui.safe_rect(),
+            ui.text_width(showroom::TITLE, showroom::TITLE_SIZE),
+            ui.text_width(showroom::HINT, showroom::HINT_SIZE),
+        );
         // Bottom: the hint, readable (20 units, light on a dark strip).
-        let hint = "Space/tap: jump   Arrows/swipe: change lane   P: pause";
-        let hint_size = 20.0;
-        let hw = ui.text_width(hint, hint_size).min(safe.w - 2.0 * MARGIN);
-        let strip = ui.anchored(Anchor::Bottom, [0.0, MARGIN], [hw + 16.0, hint_size + 8.0]);
+        let strip = layout.hint;
         ui.fill(strip, [0.0, 0.0, 0.0, 0.6]);
-        ui.label_colored([strip.x + 8.0, strip.y + 4.0], hint, hint_size, DIM);
-
-        // The panel: full (two buttons and the best score) or compact (buttons only).
-        let (full, compact) = (250.0, 2.0 * 56.0 + 3.0 * 12.0);
-        let title_size = 44.0;
-        let title_band = MARGIN + title_size + MARGIN;
-        let below = strip.y - MARGIN;
-        let room = |top: f32| below - top;
-        let show_title = room(safe.y + title_band) >= compact;
-        let top = if show_title {
-            safe.y + title_band
-        } else {
-            safe.y + MARGIN
-        };
-        let h = if room(top) >= full { full } else { compact };
-        let panel_y = top + ((room(top) - h) * 0.5).max(0.0);
-        let panel = Rect::new(safe.x + (safe.w - 340.0) * 0.5, panel_y, 340.0, h);
-        if show_title {
-            let title = "XICOM RUNNER";
-            let w = ui.text_width(title, title_size);
-            let r = ui.anchored(Anchor::Top, [0.0, MARGIN], [w, title_size]);
-            ui.label_colored([r.x, r.y], title, title_size, TITLE);
+        ui.label_colored(
+            [strip.x + 8.0, strip.y + 4.0],
+            showroom::HINT,
+            showroom::HINT_SIZE,
+            DIM,
+        );
+        if let Some(r) = layout.title {
+            ui.label_colored([r.x, r.y], showroom::TITLE, showroom::TITLE_SIZE, TITLE);
         }
+        // The panel: full (two buttons and the best score) or compact (buttons only).
+        let panel = layout.panel;
         ui.panel(panel);
         let model = settings.shading_model();
         self.option.clear();
         let _ = write!(self.option, "Skin: {}", model.label());
-        let gap = if h == full { 24.0 } else { 12.0 };
-        let option = Anchor::Top.place(panel, [0.0, gap], [300.0, 56.0]);
+        let gap = if layout.full { 24.0 } else { 12.0 };
+        let bw = layout.button_w();
+        let option = Anchor::Top.place(panel, [0.0, gap], [bw, 56.0]);
         if ui.button("shading", option, &self.option) {
             settings.set_shading_model(model.next());
             out.shading_changed = true;
@@ -188,10 +181,10 @@ impl GameUi {
             game.start();
             out.started = true;
         }
-        if h == full {
+        if layout.full {
             self.line1.clear();
             let _ = write!(self.line1, "Best: {} m", settings.best.max(game.best()));
-            let best = Anchor::Bottom.place(panel, [0.0, 24.0], [300.0, 24.0]);
+            let best = Anchor::Bottom.place(panel, [0.0, 24.0], [bw, 24.0]);
             ui.label_centered(best, &self.line1, 24.0, DIM);
         }
     }

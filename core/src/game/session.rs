@@ -9,12 +9,12 @@ use std::path::PathBuf;
 
 use glam::Vec3;
 
-use super::{Bot, Game, GameUi, Input, Screen, Settings, Swipe};
+use super::{Bot, Game, GameUi, Input, Screen, Settings, Showroom, Swipe};
 use crate::anim::Pose;
 use crate::asset::Model;
-use crate::camera::FollowCamera;
+use crate::camera::{CameraPose, FollowCamera};
 use crate::governor::{Change, Governor, GovernorConfig, Needs, Tiers};
-use crate::render::rig::{key_light, CHARACTER, EXPOSURE};
+use crate::render::rig::{CHARACTER, EXPOSURE};
 use crate::render::{DrawSet, FrameView, Light, PropInstance, Renderer, UiRenderer};
 use crate::shading::ShadingModel;
 use crate::ui::{Insets, Ui};
@@ -59,7 +59,10 @@ pub struct Session {
     pub settings: Settings,
     settings_path: Option<PathBuf>,
     pub pose: Pose,
+    /// The follow camera (play); [`Session::view`] is the camera drawn.
     pub camera: FollowCamera,
+    /// The menu's close-up camera and orbiting light, blended with the follow camera.
+    pub showroom: Showroom,
     props: Vec<PropInstance>,
     pub light: Light,
     pending: Input,
@@ -92,6 +95,7 @@ impl Session {
         game.set_best(settings.best);
         let mut camera = FollowCamera::new(Vec3::new(0.0, 2.2, -4.5), Vec3::new(0.0, 1.0, 4.0));
         camera.snap(game.camera_target().0, 0.0);
+        let showroom = Showroom::new(game.screen(), &camera);
         Self {
             game,
             bot: autoplay.then(|| Bot::new(seed)),
@@ -99,6 +103,7 @@ impl Session {
             gui: GameUi::new(),
             settings_path,
             pose: Pose::new(character),
+            showroom,
             camera,
             props: Vec::with_capacity(Game::MAX_PROPS),
             light: Light::default(),
@@ -148,7 +153,7 @@ impl Session {
 
     /// Whether a sphere (centre, radius) is inside the camera's view for `aspect`.
     pub fn sphere_visible(&self, center: Vec3, radius: f32, aspect: f32) -> bool {
-        let m = self.camera.view_proj(aspect);
+        let m = self.view().view_proj(aspect);
         // Gribb–Hartmann planes from the rows of the clip matrix (depth 0..1).
         let r = [m.row(0), m.row(1), m.row(2), m.row(3)];
         let planes = [
@@ -164,6 +169,11 @@ impl Session {
             let len = n.length().max(1e-12);
             (n.dot(center) + p.w) / len >= -radius
         })
+    }
+
+    /// The camera drawn this frame: the showroom's on the menu, the follow camera in play.
+    pub fn view(&self) -> CameraPose {
+        self.showroom.view()
     }
 
     /// The shading model the player chose.
@@ -256,13 +266,15 @@ impl Session {
         let camera_dt = if self.game.is_paused() { 0.0 } else { dt };
         self.camera
             .update(camera_dt, target, yaw, &CHARACTER.capsule_at(feet, 1.0));
+        self.showroom
+            .update(camera_dt, &self.game, &self.camera, &self.ui, &viewport);
         let aspect = viewport.width as f32 / viewport.height.max(1) as f32;
         let (centre, radius) = CHARACTER.sphere_at(feet);
         self.character_visible = self.sphere_visible(centre, radius, aspect);
         if self.character_visible {
             self.animate(character);
         }
-        self.light.position = key_light(feet).position;
+        self.light.position = self.showroom.light();
         self.game.props(&mut self.props);
         // UI.
         let shading_before = self.shading();
@@ -284,7 +296,7 @@ impl Session {
             self.governor.retier(Tiers::for_choice(self.shading()));
         }
         self.needs = Needs::of_character(
-            self.camera.view_proj(aspect),
+            self.view().view_proj(aspect),
             feet,
             self.light.position,
             self.light.intensity,
@@ -338,8 +350,8 @@ impl Session {
         renderer.prepare(
             queue,
             &FrameView {
-                view_proj: self.camera.view_proj(aspect),
-                camera_pos: self.camera.eye.value,
+                view_proj: self.view().view_proj(aspect),
+                camera_pos: self.view().eye,
                 light: self.light,
                 exposure: EXPOSURE,
             },
@@ -423,9 +435,13 @@ mod tests {
             scale: 1.0,
             insets: Insets::default(),
         };
-        for _ in 0..30 {
+        // The bot starts the run after half a second; the camera leaves the menu's showroom
+        // for the follow camera within the blend: two seconds are well into play.
+        for _ in 0..120 {
             s.update(1.0 / 60.0, &model, vp);
         }
+        assert_eq!(s.game.screen(), Screen::Play);
+        assert_eq!(s.view(), s.camera.pose());
         assert!(s.character_visible);
         let (feet, _) = s.game.player_transform();
         assert!(s.sphere_visible(feet + Vec3::Y, 1.0, 16.0 / 9.0));

@@ -39,7 +39,7 @@ fn shade_probe(model: ShadingModel) -> &'static str {
     match model {
         ShadingModel::Ward | ShadingModel::WardPrinted => {
             "fn conformance_probe(s: Surface, x: f32) -> vec3<f32> {\n    \
-             return vec3<f32>(ward_specular(s, model.lobe.x, model.lobe.y, model.lobe.z));\n}\n"
+             return vec3<f32>(ward_specular(s, model.rho_s, model.alpha_x, model.alpha_y));\n}\n"
         }
         ShadingModel::Dipole | ShadingModel::DipolePrinted => {
             "fn conformance_probe(s: Surface, x: f32) -> vec3<f32> {\n    return dipole_profile(x);\n}\n"

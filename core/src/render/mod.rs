@@ -19,6 +19,7 @@ mod props;
 mod readback;
 mod renderer;
 pub mod rig;
+mod shadow;
 mod sss_pass;
 mod surface;
 mod targets;

@@ -7,6 +7,8 @@ use super::frame::{FrameUniform, Light};
 use super::layouts::Layouts;
 use super::pipelines::{PipelineSet, Pipelines};
 use super::props::{PropGpu, PropInstance, PropKind, MAX_INSTANCES};
+use super::rig::CHARACTER;
+use super::shadow::{BlobShadows, Casters};
 use super::sss_pass::{SplitTargets, SssPass};
 use super::targets::Targets;
 use super::timer::PassTimer;
@@ -53,6 +55,10 @@ pub struct Renderer {
     props: Vec<PropGpu>,
     /// Scratch for grouping prop instances by kind (reused, no per-frame allocation).
     scratch: Vec<[[f32; 4]; 4]>,
+    /// What casts a blob shadow (recorded at load).
+    casters: Casters,
+    /// Blob shadows, once enabled with a caster loaded (`shadow.rs`).
+    shadows: Option<BlobShadows>,
     pub format: wgpu::TextureFormat,
     pub clear: wgpu::Color,
 }
@@ -104,6 +110,8 @@ impl Renderer {
             character: None,
             props: Vec::new(),
             scratch: Vec::with_capacity(MAX_INSTANCES as usize),
+            casters: Casters::default(),
+            shadows: None,
             format,
             clear: wgpu::Color {
                 r: 0.015,
@@ -131,6 +139,7 @@ impl Renderer {
             &models,
         )?;
         self.character = Some(character);
+        self.casters.character = Some(CHARACTER);
         self.set_material(&gpu.queue, material);
         Ok(())
     }
@@ -154,6 +163,7 @@ impl Renderer {
     /// Uploads a prop model for `kind`.
     pub fn load_prop(&mut self, gpu: &Gpu, kind: PropKind, model: &Model) {
         self.props.retain(|p| p.kind != kind);
+        self.casters.set_prop(kind, model);
         self.props.push(PropGpu::new(
             &gpu.device,
             &gpu.queue,
@@ -172,6 +182,32 @@ impl Renderer {
         if let Some(sss) = &self.sss {
             sss.set_material(queue, material, self.clear);
         }
+    }
+
+    /// Builds the blob shadows (at load) if anything loaded casts one; returns whether they
+    /// exist. Load the scene first. The blobs are uploaded by [`Self::set_props`].
+    pub fn enable_blob_shadows(&mut self, gpu: &Gpu) -> bool {
+        if self.shadows.is_none() && self.casters.any() {
+            self.shadows = Some(BlobShadows::new(
+                &gpu.device,
+                &self.layouts.frame,
+                self.format,
+                self.sss.is_some(),
+            ));
+        }
+        self.shadows.is_some()
+    }
+
+    /// Switches built blob shadows on or off (the pipelines stay built).
+    pub fn set_blob_shadows(&mut self, on: bool) {
+        if let Some(s) = &mut self.shadows {
+            s.enabled = on;
+        }
+    }
+
+    /// Whether blob shadows are built and switched on.
+    pub fn blob_shadows(&self) -> bool {
+        self.shadows.as_ref().is_some_and(|s| s.enabled)
     }
 
     /// Whether this renderer has the screen-space subsurface pass.
@@ -194,6 +230,9 @@ impl Renderer {
             );
             uploads += u32::from(prop.set_instances(queue, &self.scratch));
         }
+        if let Some(s) = &mut self.shadows {
+            uploads += s.set_props(queue, &self.casters, instances);
+        }
         uploads
     }
 
@@ -207,6 +246,9 @@ impl Renderer {
     ) {
         if let Some(c) = &mut self.character {
             c.update_pose(queue, model, pose, world);
+        }
+        if let Some(s) = &mut self.shadows {
+            s.set_character(&CHARACTER, world);
         }
     }
 
@@ -273,7 +315,8 @@ impl Renderer {
             multiview_mask: None,
         });
         pass.set_bind_group(0, &self.frame_group, &[]);
-        self.draw_scene(&mut pass, draw, &self.pipelines.prop, &mut stats);
+        let shadow = self.shadows.as_ref().map(|s| &s.pipeline);
+        self.draw_scene(&mut pass, draw, &self.pipelines.prop, shadow, &mut stats);
         // The UI goes last, inside the same pass: one draw call.
         if let Some(ui) = ui {
             stats.draw_calls += ui.draw(&mut pass);
@@ -298,14 +341,33 @@ impl Renderer {
         })
     }
 
-    /// The character and props of `draw` into the open pass.
+    /// The character and props of `draw` into the open pass. With blob shadows on and props
+    /// drawn: the floor first, then the blobs (depth-tested against it), then what stands on
+    /// it, which covers its own blob.
     fn draw_scene<'p>(
         &'p self,
         pass: &mut wgpu::RenderPass<'p>,
         draw: DrawSet,
         prop_pipeline: &'p wgpu::RenderPipeline,
+        shadow_pipeline: Option<&'p wgpu::RenderPipeline>,
         stats: &mut RenderStats,
     ) {
+        // The blobs lie on the floor: none in a frame without it.
+        let shadows = self
+            .shadows
+            .as_ref()
+            .filter(|s| s.enabled && draw.props)
+            .zip(shadow_pipeline);
+        let is_floor = |p: &PropGpu| p.kind == PropKind::FloorTile;
+        if let Some((blobs, pipeline)) = shadows {
+            pass.set_pipeline(prop_pipeline);
+            for prop in self.props.iter().filter(|p| is_floor(p)) {
+                stats.draw_calls += prop.draw(pass);
+                stats.triangles += prop.triangles * prop.count;
+            }
+            let character = draw.character && self.character.is_some();
+            stats.draw_calls += blobs.draw(pass, pipeline, character);
+        }
         if draw.character {
             // A model outside the built set is not drawn (and never compiled at run time).
             let pipeline = self.pipelines.character.get(draw.shading);
@@ -320,7 +382,12 @@ impl Renderer {
         }
         if draw.props {
             pass.set_pipeline(prop_pipeline);
-            for prop in &self.props {
+            // The floor went first when the blobs were drawn.
+            for prop in self
+                .props
+                .iter()
+                .filter(|p| shadows.is_none() || !is_floor(p))
+            {
                 stats.draw_calls += prop.draw(pass);
                 stats.triangles += prop.triangles * prop.count;
             }
@@ -374,7 +441,8 @@ impl Renderer {
                 multiview_mask: None,
             });
             pass.set_bind_group(0, &self.frame_group, &[]);
-            self.draw_scene(&mut pass, draw, prop_split, &mut stats);
+            let shadow = self.shadows.as_ref().and_then(|s| s.split.as_ref());
+            self.draw_scene(&mut pass, draw, prop_split, shadow, &mut stats);
         }
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("subsurface"),

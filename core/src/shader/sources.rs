@@ -28,6 +28,7 @@ pub const MODULES: &[(&str, &str)] = &[
     ("character", include_str!("../../../shaders/character.wgsl")),
     ("prop", include_str!("../../../shaders/prop.wgsl")),
     ("ui", include_str!("../../../shaders/ui.wgsl")),
+    ("shadow", include_str!("../../../shaders/shadow.wgsl")),
 ];
 
 /// The source of module `name`, if it exists.

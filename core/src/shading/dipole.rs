@@ -9,11 +9,45 @@
 //! Eq. 3 as printed divides the virtual-source term by an extra σ'_t (wrong units): that is
 //! the `dipole-printed` variant.
 
-use super::pixel::{rows, Pixel};
-use super::{fresnel, uniform::ModelParams, units, Material};
+use super::pixel::Pixel;
+use super::uniform::{f32x3, model_uniform, rgb, ModelParams};
+use super::{fresnel, units, Material};
 use glam::DVec3;
 
-/// What `dipole.wgsl` reads: everything that does not vary per pixel.
+model_uniform! {
+    /// What `dipole.wgsl` reads (its `DipoleUniform`, member for member).
+    pub struct DipoleUniform {
+        /// σ_tr (mm⁻¹).
+        pub sigma_tr: [f32; 3],
+        /// η.
+        pub eta: f32,
+        /// z_r (mm).
+        pub z_r: [f32; 3],
+        /// mm of r per metre of light distance.
+        pub r_mm_per_m: f32,
+        /// z_v (mm).
+        pub z_v: [f32; 3],
+        /// Area (mm²) turning R_d into a reflectance.
+        pub area_mm2: f32,
+        /// α'.
+        pub albedo: [f32; 3],
+        /// Minimum light distance (m).
+        pub light_d_min_m: f32,
+        /// Total diffuse reflectance R_d (ambient term).
+        pub total: [f32; 3],
+        pub _pad0: f32,
+        /// σ'_t = 1/ℓ (mm⁻¹).
+        pub sigma_t_prime: [f32; 3],
+        pub _pad1: f32,
+        /// σ_tr ℓ = √(3σ_a/σ'_t) (standard form's nondimensional input).
+        pub s_nd: [f32; 3],
+        /// z_v/ℓ = 1 + 4A/3 (standard form's nondimensional input).
+        pub zv_nd: f32,
+    }
+}
+
+/// What `dipole.wgsl` reads, in f64 ([`DipoleUniform`] packed): everything that does not
+/// vary per pixel.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Params {
     pub sigma_tr: [f64; 3],
@@ -47,17 +81,26 @@ impl Params {
         }
     }
 
+    pub fn uniform(&self) -> DipoleUniform {
+        DipoleUniform {
+            sigma_tr: f32x3(self.sigma_tr),
+            eta: self.eta as f32,
+            z_r: f32x3(self.z_r),
+            r_mm_per_m: (units::MM_PER_M * units::DIPOLE_R_SCALE) as f32,
+            z_v: f32x3(self.z_v),
+            area_mm2: units::DIPOLE_AREA_MM2 as f32,
+            albedo: f32x3(self.albedo),
+            light_d_min_m: units::LIGHT_D_MIN_M as f32,
+            total: f32x3(self.total),
+            sigma_t_prime: f32x3(self.sigma_t_prime),
+            s_nd: f32x3(self.s_nd),
+            zv_nd: self.zv_nd as f32,
+            ..bytemuck::Zeroable::zeroed()
+        }
+    }
+
     pub fn pack(&self) -> ModelParams {
-        let row = |v: [f64; 3], w: f64| [v[0] as f32, v[1] as f32, v[2] as f32, w as f32];
-        ModelParams::from_rows(&[
-            row(self.sigma_tr, self.eta),
-            row(self.z_r, units::MM_PER_M * units::DIPOLE_R_SCALE),
-            row(self.z_v, units::DIPOLE_AREA_MM2),
-            row(self.albedo, units::LIGHT_D_MIN_M),
-            row(self.total, 0.0),
-            row(self.sigma_t_prime, 0.0),
-            row(self.s_nd, self.zv_nd),
-        ])
+        ModelParams::from_uniform(&self.uniform())
     }
 
     /// f64 reference of R_d(r) [mm⁻²] for channel `c`, r in mm (standard form).
@@ -99,33 +142,38 @@ pub fn rd_nd(rho: f64, s: f64, zv: f64, albedo: f64) -> f64 {
 
 /// f64 reference of `dipole.wgsl`'s `dipole_profile(r)` [mm⁻²] from the packed uniform.
 pub fn profile_packed(p: &ModelParams, printed: bool, r: f64) -> DVec3 {
-    let k = rows(p);
-    let v = |i: usize| DVec3::new(k[i][0], k[i][1], k[i][2]);
-    let albedo = v(3);
+    let u: &DipoleUniform = p.uniform();
+    let albedo = rgb(u.albedo);
     if printed {
-        let (s, zr, zv, t) = (v(0), v(1), v(2), v(5));
+        let (s, zr, zv, t) = (
+            rgb(u.sigma_tr),
+            rgb(u.z_r),
+            rgb(u.z_v),
+            rgb(u.sigma_t_prime),
+        );
         let dr = (zr * zr + DVec3::splat(r * r)).map(f64::sqrt);
         let dv = (zv * zv + DVec3::splat(r * r)).map(f64::sqrt);
         let real = (s * dr + 1.0) * (-s * dr).map(f64::exp) / (t * dr * dr * dr);
         let virt = zv * (s * dv + 1.0) * (-s * dv).map(f64::exp) / (t * dv * dv * dv);
         albedo / (4.0 * std::f64::consts::PI) * (real + virt)
     } else {
-        let (t, s) = (v(5), v(6));
+        let (t, s) = (rgb(u.sigma_t_prime), rgb(u.s_nd));
         DVec3::from_array(std::array::from_fn(|c| {
-            t[c] * t[c] * rd_nd(t[c] * r, s[c], k[6][3], albedo[c])
+            t[c] * t[c] * rd_nd(t[c] * r, s[c], u.zv_nd.into(), albedo[c])
         }))
     }
 }
 
 /// f64 reference of `dipole.wgsl`'s `shade` for the packed uniform and one pixel.
 pub fn shade(p: &ModelParams, printed: bool, px: &Pixel) -> DVec3 {
-    let k = rows(p);
-    let r = px.light_dist().max(k[3][3]) * k[1][3];
-    let eta = k[0][3];
+    let u: &DipoleUniform = p.uniform();
+    let r = px.light_dist().max(u.light_d_min_m.into()) * f64::from(u.r_mm_per_m);
+    let eta = u.eta.into();
     let ft = fresnel::transmittance_shader(eta, px.n.dot(px.l))
         * fresnel::transmittance_shader(eta, px.n.dot(px.v));
-    let direct = px.light * profile_packed(p, printed, r) * (ft / std::f64::consts::PI * k[2][3]);
-    px.ambient * DVec3::new(k[4][0], k[4][1], k[4][2]) + direct
+    let area = f64::from(u.area_mm2);
+    let direct = px.light * profile_packed(p, printed, r) * (ft / std::f64::consts::PI * area);
+    px.ambient * rgb(u.total) + direct
 }
 
 /// Total diffuse reflectance of the dipole (Jensen 2001, eq. for R_d):

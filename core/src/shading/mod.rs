@@ -27,4 +27,4 @@ pub mod ward;
 
 pub use material::Material;
 pub use registry::{Descriptor, Effects, ShadingModel};
-pub use uniform::{ModelParams, MODEL_PARAM_ROWS};
+pub use uniform::{Field, Layout, ModelParams, Uniform, MODEL_PARAM_ROWS};

@@ -22,9 +22,46 @@
 //!
 //! So 0 ≤ f_d ≤ (1 − F_dr)(1 + F_dr) < 1.
 
-use super::pixel::{rows, Pixel};
-use super::{fresnel, uniform::ModelParams, units, ward, Material};
+use super::pixel::Pixel;
+use super::uniform::{f32x3, model_uniform, rgb, ModelParams};
+use super::{fresnel, units, ward, Material};
 use glam::DVec3;
+
+model_uniform! {
+    /// What `oss.wgsl` reads (its `OssUniform`, member for member).
+    pub struct OssUniform {
+        /// f_d = c0 + c1 d + c2 d² + c3 d³ per channel (printed form).
+        pub c0: [f32; 3],
+        /// mm of depth per metre of thickness.
+        pub depth_mm_per_m: f32,
+        pub c1: [f32; 3],
+        pub _pad0: f32,
+        pub c2: [f32; 3],
+        pub _pad1: f32,
+        pub c3: [f32; 3],
+        pub _pad2: f32,
+        /// ρ_d.
+        pub rho_d: f32,
+        /// ρ_ts.
+        pub rho_ts: f32,
+        /// Minimum light distance (m) in d^-2.5.
+        pub light_d_min_m: f32,
+        /// 1 when the texture tints the colour.
+        pub textured: f32,
+        /// The Ward lobe ([`ward::Lobe`]).
+        pub rho_s: f32,
+        pub alpha_x: f32,
+        pub alpha_y: f32,
+        pub _pad3: f32,
+        /// σ_a (mm⁻¹), stable form only.
+        pub sigma_a: [f32; 3],
+        /// F_dr(η), stable form only.
+        pub fdr: f32,
+        /// σ'_s P (mm⁻¹), stable form only.
+        pub sp: [f32; 3],
+        pub _pad4: f32,
+    }
+}
 
 /// ρ_d, ρ_s, ρ_ts for skin (§3.3).
 pub const RHO_D: f64 = 1.0;
@@ -60,40 +97,46 @@ pub fn f_d_stable_nd(a: f64, sp: f64, f: f64) -> f64 {
 
 /// f64 reference of `oss.wgsl`'s `oss_colour(d)` (d in mm) from the packed uniform.
 pub fn colour_packed(p: &ModelParams, stable: bool, d: f64) -> DVec3 {
-    let k = rows(p);
-    DVec3::from_array(std::array::from_fn(|c| {
-        if stable {
-            f_d_stable_nd(k[6][c] * d, k[7][c] * d, k[6][3])
-        } else {
-            k[0][c] + d * (k[1][c] + d * (k[2][c] + d * k[3][c]))
-        }
-    }))
+    let u: &OssUniform = p.uniform();
+    if stable {
+        let (a, sp) = (rgb(u.sigma_a), rgb(u.sp));
+        DVec3::from_array(std::array::from_fn(|c| {
+            f_d_stable_nd(a[c] * d, sp[c] * d, u.fdr.into())
+        }))
+    } else {
+        let [c0, c1, c2, c3] = [u.c0, u.c1, u.c2, u.c3].map(rgb);
+        c0 + d * (c1 + d * (c2 + d * c3))
+    }
 }
 
 /// f64 reference of `oss.wgsl`'s `shade` for the packed uniform and one pixel. The light
 /// distance in the translucency term 20 ρ_ts / d^2.5 is clamped below at
-/// [`units::OSS_LIGHT_D_MIN_M`] (packed in `misc.z`), so the term is ≤ 20 ρ_ts · 316.
+/// [`units::OSS_LIGHT_D_MIN_M`] (packed as `light_d_min_m`), so the term is ≤ 20 ρ_ts · 316.
 pub fn shade(p: &ModelParams, stable: bool, px: &Pixel) -> DVec3 {
-    let k = rows(p);
-    let misc = k[4];
-    let fd = colour_packed(p, stable, px.thickness() * k[0][3]);
-    let tex = if misc[3] > 0.5 { px.albedo } else { DVec3::ONE };
+    let u: &OssUniform = p.uniform();
+    let fd = colour_packed(p, stable, px.thickness() * f64::from(u.depth_mm_per_m));
+    let tex = if u.textured > 0.5 {
+        px.albedo
+    } else {
+        DVec3::ONE
+    };
     let nl = px.n.dot(px.l).max(0.0);
-    let dl = px.light_dist().max(misc[2]);
-    let translucency = 20.0 * misc[1] / dl.powf(2.5) * px.light;
+    let dl = px.light_dist().max(u.light_d_min_m.into());
+    let (rho_d, rho_ts) = (f64::from(u.rho_d), f64::from(u.rho_ts));
+    let translucency = 20.0 * rho_ts / dl.powf(2.5) * px.light;
     let e0 = px.irradiance();
-    let diffuse = fd * tex * (misc[0] * nl * e0 + translucency) / std::f64::consts::PI;
+    let diffuse = fd * tex * (rho_d * nl * e0 + translucency) / std::f64::consts::PI;
     let lobe = ward::Lobe {
-        rho_s: k[5][0],
-        alpha_x: k[5][1],
-        alpha_y: k[5][2],
+        rho_s: u.rho_s.into(),
+        alpha_x: u.alpha_x.into(),
+        alpha_y: u.alpha_y.into(),
     };
     let specular = e0 * nl * ward::lobe_specular(px, &lobe, false);
-    let ambient = px.ambient * fd * tex * misc[0];
+    let ambient = px.ambient * fd * tex * rho_d;
     (ambient + diffuse + specular).max(DVec3::ZERO)
 }
 
-/// What `oss.wgsl` reads.
+/// What `oss.wgsl` reads, in f64 ([`OssUniform`] packed).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Params {
     /// f_d = c[0] + c[1] d + c[2] d² + c[3] d³ per channel.
@@ -146,32 +189,34 @@ impl Params {
         k[0][c] + d * (k[1][c] + d * (k[2][c] + d * k[3][c]))
     }
 
-    pub fn pack(&self) -> ModelParams {
-        let row = |v: [f64; 3], w: f64| [v[0] as f32, v[1] as f32, v[2] as f32, w as f32];
+    pub fn uniform(&self) -> OssUniform {
         let lobe = ward::Lobe {
             rho_s: RHO_S,
             ..ward::Lobe::SKIN
         };
-        ModelParams::from_rows(&[
-            row(self.coeffs[0], units::MM_PER_M * units::OSS_DEPTH_SCALE),
-            row(self.coeffs[1], 0.0),
-            row(self.coeffs[2], 0.0),
-            row(self.coeffs[3], 0.0),
-            [
-                RHO_D as f32,
-                RHO_TS as f32,
-                units::OSS_LIGHT_D_MIN_M as f32,
-                self.textured as u8 as f32,
-            ],
-            [
-                lobe.rho_s as f32,
-                lobe.alpha_x as f32,
-                lobe.alpha_y as f32,
-                0.0,
-            ],
-            row(self.sigma_a, self.fdr),
-            row(self.sp, 0.0),
-        ])
+        let [c0, c1, c2, c3] = self.coeffs.map(f32x3);
+        OssUniform {
+            c0,
+            depth_mm_per_m: (units::MM_PER_M * units::OSS_DEPTH_SCALE) as f32,
+            c1,
+            c2,
+            c3,
+            rho_d: RHO_D as f32,
+            rho_ts: RHO_TS as f32,
+            light_d_min_m: units::OSS_LIGHT_D_MIN_M as f32,
+            textured: self.textured as u8 as f32,
+            rho_s: lobe.rho_s as f32,
+            alpha_x: lobe.alpha_x as f32,
+            alpha_y: lobe.alpha_y as f32,
+            sigma_a: f32x3(self.sigma_a),
+            fdr: self.fdr as f32,
+            sp: f32x3(self.sp),
+            ..bytemuck::Zeroable::zeroed()
+        }
+    }
+
+    pub fn pack(&self) -> ModelParams {
+        ModelParams::from_uniform(&self.uniform())
     }
 }
 

@@ -5,7 +5,7 @@
 
 use glam::DVec3;
 
-use super::{units, ModelParams, MODEL_PARAM_ROWS};
+use super::units;
 
 /// One pixel's shading inputs, as `make_surface` produces them (world-space unit vectors).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -77,9 +77,4 @@ impl Pixel {
             ambient: v(self.ambient),
         }
     }
-}
-
-/// The packed uniform as f64 rows.
-pub fn rows(p: &ModelParams) -> [[f64; 4]; MODEL_PARAM_ROWS] {
-    p.0.map(|r| r.map(f64::from))
 }

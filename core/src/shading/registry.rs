@@ -8,7 +8,7 @@ use super::bake::{self, Bake};
 use super::pixel::Pixel;
 use super::preintegrated::{self, Lut};
 use super::subsurface::{self, Kernel};
-use super::uniform::ModelParams;
+use super::uniform::{Layout, ModelParams, Uniform};
 use super::{burley, dipole, oss, prediction, tabulated, ward, Material};
 use crate::shader::ShaderDefs;
 
@@ -72,6 +72,11 @@ pub struct Descriptor {
     pub variant: Option<&'static str>,
     /// What its shader computes.
     pub effects: Effects,
+    /// Its uniform struct, declared once with `model_uniform!` in its Rust file (the struct
+    /// `params` packs and `shade`/`probe` read); the WGSL struct bound at `@group(1)
+    /// @binding(0)` by its module (or a module it imports) declares the same members in the
+    /// same order (`core/tests/uniform_layout.rs` compares the two with naga).
+    pub uniform: Layout,
     /// CPU-side precompute of the uniform for a material.
     pub params: fn(&Material) -> ModelParams,
     /// The same from measured tables (models that read them).
@@ -136,6 +141,7 @@ pub static TABLE: [Descriptor; 9] = [
         module: "ward",
         variant: None,
         effects: WARD,
+        uniform: ward::WardUniform::LAYOUT,
         params: |m| ward::Params::new(m, &ward::Lobe::SKIN).pack(),
         params_from: None,
         kernel: None,
@@ -151,6 +157,7 @@ pub static TABLE: [Descriptor; 9] = [
         module: "ward",
         variant: Some("WARD_PRINTED"),
         effects: WARD,
+        uniform: ward::WardUniform::LAYOUT,
         params: |m| ward::Params::new(m, &ward::Lobe::SKIN).pack(),
         params_from: None,
         kernel: None,
@@ -166,6 +173,7 @@ pub static TABLE: [Descriptor; 9] = [
         module: "dipole",
         variant: None,
         effects: DIPOLE,
+        uniform: dipole::DipoleUniform::LAYOUT,
         params: |m| dipole::Params::new(m).pack(),
         params_from: None,
         kernel: None,
@@ -181,6 +189,7 @@ pub static TABLE: [Descriptor; 9] = [
         module: "dipole",
         variant: Some("DIPOLE_PRINTED"),
         effects: DIPOLE,
+        uniform: dipole::DipoleUniform::LAYOUT,
         params: |m| dipole::Params::new(m).pack(),
         params_from: None,
         kernel: None,
@@ -196,6 +205,7 @@ pub static TABLE: [Descriptor; 9] = [
         module: "oss",
         variant: None,
         effects: OSS,
+        uniform: oss::OssUniform::LAYOUT,
         params: |m| oss::Params::new(m).pack(),
         params_from: None,
         kernel: None,
@@ -211,6 +221,7 @@ pub static TABLE: [Descriptor; 9] = [
         module: "oss",
         variant: Some("OSS_STABLE"),
         effects: OSS,
+        uniform: oss::OssUniform::LAYOUT,
         params: |m| oss::Params::new(m).pack(),
         params_from: None,
         kernel: None,
@@ -230,6 +241,7 @@ pub static TABLE: [Descriptor; 9] = [
             screen_space: true,
             ..NONE
         },
+        uniform: subsurface::SubsurfaceUniform::LAYOUT,
         params: |m| burley::params(m).pack(),
         params_from: None,
         kernel: Some(burley::kernel),
@@ -250,6 +262,7 @@ pub static TABLE: [Descriptor; 9] = [
             screen_space: true,
             ..NONE
         },
+        uniform: subsurface::SubsurfaceUniform::LAYOUT,
         params: |m| tabulated::params(m).pack(),
         params_from: Some(|b, m| tabulated::params_from(b, m).pack()),
         kernel: Some(tabulated::kernel),
@@ -270,6 +283,7 @@ pub static TABLE: [Descriptor; 9] = [
             lut: true,
             ..NONE
         },
+        uniform: subsurface::SubsurfaceUniform::LAYOUT,
         params: |m| preintegrated::params(m).pack(),
         params_from: Some(|b, m| preintegrated::params_from(b, m).pack()),
         kernel: None,
@@ -434,6 +448,9 @@ mod tests {
             // The functions run and give finite values.
             let p = (d.params)(&SKIN1);
             assert!(p.0.iter().flatten().all(|v| v.is_finite()), "{}", d.name);
+            // `params` packs no more than the declared uniform struct.
+            let past = &bytemuck::bytes_of(&p)[d.uniform.size..];
+            assert!(past.iter().all(|b| *b == 0), "{}", d.name);
             let px = Pixel::new(DVec3::new(0.3, 0.2, 0.9).normalize(), DVec3::Z);
             assert!((d.shade)(&p, &px).is_finite(), "{}", d.name);
             assert!((d.probe)(&p, &px, 0.5).is_finite(), "{}", d.name);

@@ -11,8 +11,9 @@
 use glam::DVec3;
 
 use super::bake::{OBLIQUE_NODES, SLAB_FIRST_MM, SLAB_NODES};
-use super::pixel::{rows, Pixel};
-use super::{fresnel, uniform::ModelParams, units};
+use super::pixel::Pixel;
+use super::uniform::{f32x3, model_uniform, rgb, ModelParams};
+use super::{fresnel, units};
 
 /// Rings the screen-space pass can take (`MAX_RINGS` in `sss_pass.wgsl`).
 pub const MAX_RINGS: usize = 24;
@@ -89,7 +90,36 @@ impl Kernel {
     }
 }
 
-/// What `subsurface.wgsl` reads (`ModelParams`).
+model_uniform! {
+    /// What `subsurface.wgsl` reads (its `SubsurfaceUniform`, member for member): the one
+    /// uniform of the spatial models `tabulated`, `burley` and `preintegrated`.
+    pub struct SubsurfaceUniform {
+        /// Diffuse reflectance of the medium at normal incidence per incident power.
+        pub albedo: [f32; 3],
+        /// η.
+        pub eta: f32,
+        /// 1/(π C(η)).
+        pub exit_norm: f32,
+        /// 1/F_t(η, 1).
+        pub inv_entry: f32,
+        /// mm per metre of thickness.
+        pub mm_per_m: f32,
+        /// The pre-integration LUT's curvature scale R0 (mm).
+        pub lut_r0_mm: f32,
+        /// Height (mm) the light is lifted by (preintegrated).
+        pub lift: [f32; 3],
+        /// 1 for models with translucency (read by the f64 twin).
+        pub translucent: f32,
+        /// q(μ_k) = R(μ_k)/R(1), μ_k = (k/6)² (rgb).
+        pub oblique: [[f32; 4]; OBLIQUE_NODES],
+        /// ln of the diffuse transmittance of a slab SLAB_FIRST_MM · 2^k thick (rgb).
+        pub slab: [[f32; 4]; SLAB_NODES],
+        /// δ(μ_k) (mm) (rgb).
+        pub shift: [[f32; 4]; OBLIQUE_NODES],
+    }
+}
+
+/// What `subsurface.wgsl` reads, in f64 ([`SubsurfaceUniform`] packed).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Params {
     /// Diffuse reflectance at normal incidence per unit incident power.
@@ -106,30 +136,30 @@ pub struct Params {
 }
 
 impl Params {
-    pub fn pack(&self) -> ModelParams {
-        let row = |v: [f64; 3], w: f64| [v[0] as f32, v[1] as f32, v[2] as f32, w as f32];
-        let mut rows = vec![
-            row(self.albedo, self.eta),
-            [
-                (1.0 / (std::f64::consts::PI * exit_normalisation(self.eta))) as f32,
-                (1.0 / fresnel::transmittance_shader(self.eta, 1.0).max(1e-12)) as f32,
-                units::MM_PER_M as f32,
-                LUT_R0_MM as f32,
-            ],
-            row(self.lift, f64::from(u8::from(self.slab.is_some()))),
-        ];
-        rows.extend(self.oblique.iter().map(|q| row(*q, 0.0)));
+    pub fn uniform(&self) -> SubsurfaceUniform {
+        let row = |v: [f64; 3]| [v[0] as f32, v[1] as f32, v[2] as f32, 0.0];
         let slab = self.slab.unwrap_or([[0.0; 3]; SLAB_NODES]);
-        rows.extend(
-            slab.iter()
-                .map(|t| row(t.map(|v| v.max(SLAB_FLOOR).ln()), 0.0)),
-        );
-        rows.extend(self.shift.iter().map(|d| row(*d, 0.0)));
-        ModelParams::from_rows(&rows)
+        SubsurfaceUniform {
+            albedo: f32x3(self.albedo),
+            eta: self.eta as f32,
+            exit_norm: (1.0 / (std::f64::consts::PI * exit_normalisation(self.eta))) as f32,
+            inv_entry: (1.0 / fresnel::transmittance_shader(self.eta, 1.0).max(1e-12)) as f32,
+            mm_per_m: units::MM_PER_M as f32,
+            lut_r0_mm: LUT_R0_MM as f32,
+            lift: f32x3(self.lift),
+            translucent: f32::from(u8::from(self.slab.is_some())),
+            oblique: self.oblique.map(row),
+            slab: slab.map(|t| row(t.map(|v| v.max(SLAB_FLOOR).ln()))),
+            shift: self.shift.map(row),
+        }
+    }
+
+    pub fn pack(&self) -> ModelParams {
+        ModelParams::from_uniform(&self.uniform())
     }
 }
 
-/// The packed rows as the shader reads them.
+/// The packed uniform as the shader reads it, in f64.
 struct Packed {
     albedo: DVec3,
     eta: f64,
@@ -143,18 +173,20 @@ struct Packed {
 }
 
 fn unpack(p: &ModelParams) -> Packed {
-    let k = rows(p);
-    let v = |r: [f64; 4]| DVec3::new(r[0], r[1], r[2]);
+    fn rgb_table<const N: usize>(t: &[[f32; 4]; N]) -> [DVec3; N] {
+        t.map(|r| rgb([r[0], r[1], r[2]]))
+    }
+    let u: &SubsurfaceUniform = p.uniform();
     Packed {
-        albedo: v(k[0]),
-        eta: k[0][3],
-        exit_norm: k[1][0],
-        translucent: k[2][3] > 0.5,
-        inv_entry: k[1][1],
-        mm_per_m: k[1][2],
-        oblique: std::array::from_fn(|i| v(k[3 + i])),
-        slab: std::array::from_fn(|i| v(k[3 + OBLIQUE_NODES + i])),
-        shift: std::array::from_fn(|i| v(k[3 + OBLIQUE_NODES + SLAB_NODES + i])),
+        albedo: rgb(u.albedo),
+        eta: u.eta.into(),
+        exit_norm: u.exit_norm.into(),
+        translucent: u.translucent > 0.5,
+        inv_entry: u.inv_entry.into(),
+        mm_per_m: u.mm_per_m.into(),
+        oblique: rgb_table(&u.oblique),
+        slab: rgb_table(&u.slab),
+        shift: rgb_table(&u.shift),
     }
 }
 

@@ -9,8 +9,8 @@
 
 use super::{
     dipole,
-    pixel::{rows, Pixel},
-    uniform::ModelParams,
+    pixel::Pixel,
+    uniform::{f32x3, model_uniform, rgb, ModelParams},
     Material,
 };
 use glam::DVec3;
@@ -51,7 +51,36 @@ impl Sliders {
     };
 }
 
-/// What `ward.wgsl` reads.
+model_uniform! {
+    /// What `ward.wgsl` reads (its `WardUniform`, member for member).
+    pub struct WardUniform {
+        /// R_d(α') (the diffuse colour before the texture).
+        pub rho_d: [f32; 3],
+        /// 1 when the texture tints the diffuse colour.
+        pub textured: f32,
+        /// The specular lobe ([`Lobe`]).
+        pub rho_s: f32,
+        pub alpha_x: f32,
+        pub alpha_y: f32,
+        pub _pad0: f32,
+        /// The paper's sliders: diffuse, ambient, specular.
+        pub sliders: [f32; 3],
+        pub _pad1: f32,
+    }
+}
+
+impl WardUniform {
+    /// The lobe as the shader sees it.
+    pub fn lobe(&self) -> Lobe {
+        Lobe {
+            rho_s: self.rho_s.into(),
+            alpha_x: self.alpha_x.into(),
+            alpha_y: self.alpha_y.into(),
+        }
+    }
+}
+
+/// What `ward.wgsl` reads, in f64 ([`WardUniform`] packed).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Params {
     pub rho_d: [f64; 3],
@@ -70,19 +99,21 @@ impl Params {
         }
     }
 
-    pub fn pack(&self) -> ModelParams {
-        let d = self.rho_d;
+    pub fn uniform(&self) -> WardUniform {
         let (l, s) = (self.lobe, self.sliders);
-        ModelParams::from_rows(&[
-            [
-                d[0] as f32,
-                d[1] as f32,
-                d[2] as f32,
-                self.textured as u8 as f32,
-            ],
-            [l.rho_s as f32, l.alpha_x as f32, l.alpha_y as f32, 0.0],
-            [s.diffuse as f32, s.ambient as f32, s.specular as f32, 0.0],
-        ])
+        WardUniform {
+            rho_d: f32x3(self.rho_d),
+            textured: self.textured as u8 as f32,
+            rho_s: l.rho_s as f32,
+            alpha_x: l.alpha_x as f32,
+            alpha_y: l.alpha_y as f32,
+            sliders: f32x3([s.diffuse, s.ambient, s.specular]),
+            ..bytemuck::Zeroable::zeroed()
+        }
+    }
+
+    pub fn pack(&self) -> ModelParams {
+        ModelParams::from_uniform(&self.uniform())
     }
 }
 
@@ -171,21 +202,20 @@ pub fn specular_printed(frame: &Frame, l: DVec3, v: DVec3, lobe: &Lobe) -> f64 {
 /// f64 reference of `ward.wgsl`'s `shade` for the packed uniform `p` (read back to f64, so
 /// the comparison sees only the shader's arithmetic) and one pixel.
 pub fn shade(p: &ModelParams, printed: bool, px: &Pixel) -> DVec3 {
-    let r = rows(p);
-    let tex = if r[0][3] > 0.5 { px.albedo } else { DVec3::ONE };
-    let kd = DVec3::new(r[0][0], r[0][1], r[0][2]) * tex;
-    let sliders = r[2];
+    let u: &WardUniform = p.uniform();
+    let tex = if u.textured > 0.5 {
+        px.albedo
+    } else {
+        DVec3::ONE
+    };
+    let kd = rgb(u.rho_d) * tex;
+    let sliders = rgb(u.sliders);
     let ambient = px.ambient * kd * sliders[1];
     let nl = px.n.dot(px.l);
     if nl <= 0.0 {
         return ambient;
     }
-    let lobe = Lobe {
-        rho_s: r[1][0],
-        alpha_x: r[1][1],
-        alpha_y: r[1][2],
-    };
-    let spec = lobe_specular(px, &lobe, printed);
+    let spec = lobe_specular(px, &u.lobe(), printed);
     ambient
         + px.irradiance()
             * nl
@@ -194,13 +224,8 @@ pub fn shade(p: &ModelParams, printed: bool, px: &Pixel) -> DVec3 {
 
 /// f64 reference of the probed `ward_specular` for the packed uniform `p` (grey).
 pub fn probe(p: &ModelParams, printed: bool, px: &Pixel) -> DVec3 {
-    let r = rows(p);
-    let lobe = Lobe {
-        rho_s: r[1][0],
-        alpha_x: r[1][1],
-        alpha_y: r[1][2],
-    };
-    DVec3::splat(lobe_specular(px, &lobe, printed))
+    let u: &WardUniform = p.uniform();
+    DVec3::splat(lobe_specular(px, &u.lobe(), printed))
 }
 
 /// `ward_specular(s, …)` for a pixel, either variant.

@@ -1,0 +1,345 @@
+//! The showroom: on the main menu (where the player picks the skin's shading model) the
+//! camera frames the character's head and torso close up, facing it from the paper's
+//! Fig. 1/2 direction, while the key light orbits it slowly, so the models' differences —
+//! light bleeding past the terminator, translucency — show as the light moves. The menu's
+//! panel sits beside the character (landscape) or below it (portrait), inside the safe area,
+//! and the camera's lens is shifted so the character lands in the part of the screen the
+//! panel leaves free ([`menu_layout`]'s `stage`). When a run starts the camera swings round
+//! to the follow camera in [`BLEND_S`] (and back when the menu returns); with the blend done
+//! the follow camera is drawn unchanged. Everything here is plain arithmetic: no allocation.
+
+use std::f32::consts::{PI, TAU};
+
+use glam::{Vec2, Vec3};
+
+use super::{Game, Screen, Viewport};
+use crate::camera::{CameraPose, FollowCamera};
+use crate::render::rig::{key_light, CHARACTER, KEY_LIGHT_OFFSET};
+use crate::ui::{Anchor, Rect, Ui};
+
+/// Space between the menu's pieces and the safe area's edges (logical units).
+pub const MARGIN: f32 = 12.0;
+/// The menu panel's width, its height with the best score and its compact height (buttons).
+pub const PANEL_W: f32 = 340.0;
+pub const PANEL_FULL_H: f32 = 250.0;
+pub const PANEL_COMPACT_H: f32 = 2.0 * 56.0 + 3.0 * 12.0;
+pub const TITLE: &str = "XICOM RUNNER";
+pub const TITLE_SIZE: f32 = 44.0;
+pub const HINT: &str = "Space/tap: jump   Arrows/swipe: change lane   P: pause";
+pub const HINT_SIZE: f32 = 20.0;
+/// The narrowest stage that puts the panel beside the character rather than below it.
+const MIN_SIDE_STAGE_W: f32 = 240.0;
+/// Portrait: the stage keeps at least this height before the panel drops its best score.
+const MIN_STAGE_H: f32 = 200.0;
+
+/// Camera ↔ showroom blend duration (s).
+pub const BLEND_S: f32 = 0.8;
+/// One turn of the key light around the character (s).
+pub const LIGHT_PERIOD_S: f32 = 16.0;
+/// The orbiting light's height above the feet (m), a little above the head; its radius keeps
+/// the key light's distance to the chest, so the exposure matches play.
+pub const LIGHT_HEIGHT: f32 = 2.3;
+/// The showroom's vertical field of view.
+pub const FOV_Y_DEG: f32 = 30.0;
+/// Fraction of the stage's height, and of its width, the head-and-torso bound fills at most.
+pub const FILL: f32 = 0.85;
+pub const FILL_W: f32 = 0.95;
+/// The head and torso (waist to the top of the head, shoulders and upper arms at rest),
+/// feet at the origin.
+pub const BUST_LO: Vec3 = Vec3::new(-0.3, 1.0, -0.2);
+pub const BUST_HI: Vec3 = Vec3::new(0.3, 1.8, 0.2);
+/// Where the camera looks from, towards the character's front (+z): Fig. 1/2's direction
+/// (`scene::frame_bounds`), a little to its left and above.
+const VIEW_DIR: Vec3 = Vec3::new(0.35, 0.12, 1.0);
+
+/// Whether `screen` shows the showroom (the main menu, with the model option).
+pub fn is_showroom(screen: Screen) -> bool {
+    matches!(screen, Screen::Main)
+}
+
+/// Where the main menu's pieces go, in logical units.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MenuLayout {
+    /// The title's rectangle; `None` on a screen too short for it.
+    pub title: Option<Rect>,
+    /// The hint's dark strip (the text starts 8 units in, 4 down).
+    pub hint: Rect,
+    pub panel: Rect,
+    /// Whether the panel has room for the best score (else only its two buttons).
+    pub full: bool,
+    /// Where the character is shown: clear of the panel, the title and the hint (on a window
+    /// too small for that, the whole safe area).
+    pub stage: Rect,
+    /// Landscape (panel beside the stage) or portrait (panel below it).
+    pub side: bool,
+}
+
+impl MenuLayout {
+    /// The widgets' width inside the panel.
+    pub fn button_w(&self) -> f32 {
+        (self.panel.w - 40.0).min(300.0)
+    }
+}
+
+/// The main menu's layout in `safe` (logical units) for a title `title_w` and a hint
+/// `hint_w` wide. Landscape: the title and the panel in a column on the right, the character
+/// on the left. Portrait (or too narrow for a column): the title at the top, the panel at the
+/// bottom above the hint, the character between them. The hint is always at the bottom.
+pub fn menu_layout(safe: Rect, title_w: f32, hint_w: f32) -> MenuLayout {
+    let hw = hint_w.min(safe.w - 2.0 * MARGIN).max(0.0);
+    let hint = Anchor::Bottom.place(safe, [0.0, MARGIN], [hw + 16.0, HINT_SIZE + 8.0]);
+    let below = hint.y - MARGIN;
+    let title_band = MARGIN + TITLE_SIZE + MARGIN;
+    let room = |top: f32| below - top;
+    let show_title = room(safe.y + title_band) >= PANEL_COMPACT_H;
+    let top = if show_title {
+        safe.y + title_band
+    } else {
+        safe.y + MARGIN
+    };
+    let col_w = PANEL_W.max(title_w);
+    let side = safe.w > safe.h && safe.w >= col_w + 3.0 * MARGIN + MIN_SIDE_STAGE_W;
+    let (panel, title, stage, full) = if side {
+        let col_x = safe.x + safe.w - 2.0 * MARGIN - col_w;
+        let full = room(top) >= PANEL_FULL_H;
+        let h = if full { PANEL_FULL_H } else { PANEL_COMPACT_H };
+        let y = top + ((room(top) - h) * 0.5).max(0.0);
+        let panel = Rect::new(col_x + (col_w - PANEL_W) * 0.5, y, PANEL_W, h);
+        let title = Rect::new(
+            col_x + (col_w - title_w) * 0.5,
+            safe.y + MARGIN,
+            title_w,
+            TITLE_SIZE,
+        );
+        let x0 = safe.x + MARGIN;
+        let y0 = safe.y + MARGIN;
+        let stage = Rect::new(
+            x0,
+            y0,
+            (col_x - MARGIN - x0).max(1.0),
+            (below - y0).max(1.0),
+        );
+        (panel, title, stage, full)
+    } else {
+        let w = PANEL_W.min(safe.w - 2.0 * MARGIN).max(0.0);
+        let full = room(top) >= PANEL_FULL_H + MIN_STAGE_H;
+        let h = if full { PANEL_FULL_H } else { PANEL_COMPACT_H };
+        // At the bottom above the hint; on a short screen right under the title.
+        let y = (below - h).max(top);
+        let panel = Rect::new(safe.x + (safe.w - w) * 0.5, y, w, h);
+        let title = Anchor::Top.place(safe, [0.0, MARGIN], [title_w, TITLE_SIZE]);
+        let stage = if y - MARGIN - top >= 0.5 * MIN_STAGE_H {
+            Rect::new(
+                safe.x + MARGIN,
+                top,
+                (safe.w - 2.0 * MARGIN).max(1.0),
+                y - MARGIN - top,
+            )
+        } else {
+            // No room beside or above the panel (a tiny window): the whole safe area.
+            safe.inset(MARGIN.min(0.25 * safe.w.min(safe.h)))
+        };
+        (panel, title, stage, full)
+    };
+    MenuLayout {
+        title: show_title.then_some(title),
+        hint,
+        panel,
+        full,
+        stage,
+        side,
+    }
+}
+
+/// The whole screen and the safe area of `viewport` in logical units (as [`Ui::begin`] sees
+/// them).
+pub fn viewport_rects(viewport: &Viewport) -> (Rect, Rect) {
+    let s = if viewport.scale.is_finite() && viewport.scale > 0.0 {
+        viewport.scale
+    } else {
+        1.0
+    };
+    let (w, h) = (viewport.width.max(1) as f32, viewport.height.max(1) as f32);
+    let i = viewport.insets;
+    (
+        Rect::new(0.0, 0.0, w / s, h / s),
+        Rect::new(
+            i.left / s,
+            i.top / s,
+            ((w - i.left - i.right) / s).max(0.0),
+            ((h - i.top - i.bottom) / s).max(0.0),
+        ),
+    )
+}
+
+/// The menu's layout for `viewport`, measured with `ui`'s font.
+pub fn layout_for(ui: &Ui, viewport: &Viewport) -> (Rect, MenuLayout) {
+    let (screen, safe) = viewport_rects(viewport);
+    let layout = menu_layout(
+        safe,
+        ui.text_width(TITLE, TITLE_SIZE),
+        ui.text_width(HINT, HINT_SIZE),
+    );
+    (screen, layout)
+}
+
+/// The showroom camera for a character standing at `feet` (facing +z) on a screen of
+/// `aspect`, its head and torso filling [`FILL`] of `stage`'s height or [`FILL_W`] of its
+/// width, whichever is reached first (`stage`: a fraction of the screen, x
+/// right, y down, 0..1) and centred on it by a lens shift.
+pub fn framing(feet: Vec3, aspect: f32, stage: Rect) -> CameraPose {
+    let aspect = aspect.max(1e-3);
+    let fov_y = FOV_Y_DEG.to_radians();
+    let t = (fov_y * 0.5).tan();
+    let size = BUST_HI - BUST_LO;
+    let centre = feet + (BUST_LO + BUST_HI) * 0.5;
+    // The bound spans size / (d·t) in NDC vertically (÷ aspect horizontally); the stage spans
+    // twice its fraction of the screen.
+    let (sw, sh) = (2.0 * stage.w.max(0.2), 2.0 * stage.h.max(0.2));
+    let d = (size.y / (t * sh * FILL)).max(size.x / (t * aspect * sw * FILL_W)) + size.z * 0.5;
+    let c = stage.center();
+    CameraPose {
+        eye: centre + VIEW_DIR.normalize() * d,
+        look: centre,
+        fov_y,
+        shift: Vec2::new(2.0 * c[0] - 1.0, 1.0 - 2.0 * c[1]),
+        near: 0.05,
+        far: 200.0,
+    }
+}
+
+/// How much slower the light turns in front of the character than behind it (0: uniform).
+const LIGHT_EASE: f32 = 0.6;
+
+/// The orbiting key light `time` seconds into the showroom, for a character at `feet`: it
+/// starts where the play key light stands (in front, to the right) and turns about the
+/// character's vertical axis once every [`LIGHT_PERIOD_S`], at [`LIGHT_HEIGHT`] — slowly
+/// across the front (the terminator sweeps the face: about two thirds of the turn), faster
+/// behind (backlit: translucency at the ears and the rims).
+pub fn orbit_light(feet: Vec3, time: f32) -> Vec3 {
+    let chest_to_key = KEY_LIGHT_OFFSET - Vec3::Y * CHARACTER.chest;
+    let dy = LIGHT_HEIGHT - CHARACTER.chest;
+    let radius = (chest_to_key.length_squared() - dy * dy).max(0.25).sqrt();
+    let phase = TAU * (time / LIGHT_PERIOD_S).fract();
+    // Monotonic for LIGHT_EASE < 1: d/dphase = 1 − ease·cos(phase) > 0.
+    let a = KEY_LIGHT_OFFSET.x.atan2(KEY_LIGHT_OFFSET.z) + phase - LIGHT_EASE * phase.sin();
+    feet + Vec3::new(radius * a.sin(), LIGHT_HEIGHT, radius * a.cos())
+}
+
+/// Interpolates two cameras by `t`, the eye swinging around `centre` (angle, radius and
+/// height) so it never passes through the character.
+pub fn orbit_lerp(a: &CameraPose, b: &CameraPose, t: f32, centre: Vec3) -> CameraPose {
+    if t <= 0.0 {
+        return *a;
+    }
+    if t >= 1.0 {
+        return *b;
+    }
+    let (ra, rb) = (a.eye - centre, b.eye - centre);
+    let (aa, ab) = (ra.x.atan2(ra.z), rb.x.atan2(rb.z));
+    let mut turn = ab - aa;
+    if turn > PI {
+        turn -= TAU;
+    } else if turn < -PI {
+        turn += TAU;
+    }
+    let az = aa + turn * t;
+    let (la, lb) = (
+        Vec2::new(ra.x, ra.z).length(),
+        Vec2::new(rb.x, rb.z).length(),
+    );
+    let r = la + (lb - la) * t;
+    let lerp = |x: f32, y: f32| x + (y - x) * t;
+    CameraPose {
+        eye: centre + Vec3::new(r * az.sin(), lerp(ra.y, rb.y), r * az.cos()),
+        look: a.look.lerp(b.look, t),
+        fov_y: lerp(a.fov_y, b.fov_y),
+        shift: a.shift.lerp(b.shift, t),
+        near: lerp(a.near, b.near),
+        far: lerp(a.far, b.far),
+    }
+}
+
+/// The showroom's state in a session: how far the camera is into it and the light's clock.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Showroom {
+    /// 1: the showroom camera and light; 0: the follow camera and the play key light.
+    weight: f32,
+    /// Seconds the light has orbited.
+    light_time: f32,
+    view: CameraPose,
+    light: Vec3,
+}
+
+impl Showroom {
+    /// A showroom starting on `screen`, at rest (no blend).
+    pub fn new(screen: Screen, follow: &FollowCamera) -> Self {
+        Self {
+            weight: if is_showroom(screen) { 1.0 } else { 0.0 },
+            light_time: 0.0,
+            view: follow.pose(),
+            light: key_light(Vec3::ZERO).position,
+        }
+    }
+
+    /// Advances `dt` seconds and places this frame's camera and key light: the showroom's on
+    /// the menu, the follow camera's and the play key light elsewhere, blended in between.
+    pub fn update(
+        &mut self,
+        dt: f32,
+        game: &Game,
+        follow: &FollowCamera,
+        ui: &Ui,
+        viewport: &Viewport,
+    ) {
+        let dt = if dt.is_finite() { dt.max(0.0) } else { 0.0 };
+        let target = if is_showroom(game.screen()) { 1.0 } else { 0.0 };
+        let step = dt / BLEND_S;
+        self.weight = if self.weight < target {
+            (self.weight + step).min(target)
+        } else {
+            (self.weight - step).max(target)
+        };
+        let (feet, _) = game.player_transform();
+        let key = key_light(feet).position;
+        if self.weight <= 0.0 {
+            self.view = follow.pose();
+            self.light = key;
+            return;
+        }
+        self.light_time = (self.light_time + dt) % LIGHT_PERIOD_S;
+        let (screen, layout) = layout_for(ui, viewport);
+        let s = layout.stage;
+        let stage = Rect::new(
+            s.x / screen.w,
+            s.y / screen.h,
+            s.w / screen.w,
+            s.h / screen.h,
+        );
+        let aspect = viewport.width.max(1) as f32 / viewport.height.max(1) as f32;
+        let close = framing(feet, aspect, stage);
+        let t = self.weight * self.weight * (3.0 - 2.0 * self.weight);
+        self.view = orbit_lerp(&follow.pose(), &close, t, feet);
+        self.light = key.lerp(orbit_light(feet, self.light_time), t);
+    }
+
+    /// The camera drawn this frame.
+    pub fn view(&self) -> CameraPose {
+        self.view
+    }
+
+    /// The key light's position this frame.
+    pub fn light(&self) -> Vec3 {
+        self.light
+    }
+
+    /// 1 in the showroom, 0 in play, in between while the camera swings.
+    pub fn weight(&self) -> f32 {
+        self.weight
+    }
+
+    /// Seconds the light has orbited (modulo a turn).
+    pub fn light_time(&self) -> f32 {
+        self.light_time
+    }
+}

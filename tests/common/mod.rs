@@ -1,0 +1,55 @@
+//! The headless game rig the game-frame tests share: the real renderer on the headless
+//! adapter, the project's assets, the game's GPU side, an offscreen target and a session —
+//! the frame the shells render, without a window. Each test adds its own camera and shots.
+
+use std::path::Path;
+
+use dermis_core::game::{GameGpu, Session, Viewport};
+use dermis_core::render::{Gpu, Offscreen, OFFSCREEN_FORMAT};
+use dermis_core::scene::SceneAssets;
+use dermis_core::ui::Insets;
+
+pub struct Rig {
+    pub gpu: Gpu,
+    pub assets: SceneAssets,
+    pub gg: GameGpu,
+    pub target: Offscreen,
+    pub session: Session,
+}
+
+impl Rig {
+    /// A fresh game (3 lives, no save) rendering into a `width`×`height` target.
+    pub fn new(width: u32, height: u32) -> Self {
+        let gpu = Gpu::headless().unwrap_or_else(|e| panic!("{e}"));
+        let assets = SceneAssets::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("assets"), None)
+            .unwrap_or_else(|e| panic!("{e}"));
+        let gg = GameGpu::new(&gpu, OFFSCREEN_FORMAT, &assets).unwrap();
+        let target = Offscreen::new(&gpu, width, height);
+        let session = Session::new(&assets.character, 3, None, false);
+        Self {
+            gpu,
+            assets,
+            gg,
+            target,
+            session,
+        }
+    }
+
+    /// The target's size as the game's viewport (scale 1, no insets).
+    pub fn viewport(&self) -> Viewport {
+        Viewport {
+            width: self.target.targets.width,
+            height: self.target.targets.height,
+            scale: 1.0,
+            insets: Insets::ZERO,
+        }
+    }
+
+    /// Advances the session by `dt` seconds and uploads the frame, as the shells do.
+    pub fn update(&mut self, dt: f32) {
+        let viewport = self.viewport();
+        self.session.update(dt, &self.assets.character, viewport);
+        self.gg
+            .upload(&self.gpu.queue, &mut self.session, &self.assets.character);
+    }
+}
