@@ -4,7 +4,7 @@
 use super::layouts::Layouts;
 use super::mesh::{instance_layout, vertex_layout};
 use super::sss_pass::SPLIT_FORMAT;
-use super::targets::{DEPTH_FORMAT, MSAA_SAMPLES};
+use super::targets::{depth_state, multisample, MSAA_SAMPLES};
 use crate::shader::{compose, ShaderDefs};
 use crate::shading::ShadingModel;
 
@@ -201,17 +201,8 @@ fn pipeline(
             cull_mode: Some(wgpu::Face::Back),
             ..Default::default()
         },
-        depth_stencil: Some(wgpu::DepthStencilState {
-            format: DEPTH_FORMAT,
-            depth_write_enabled: Some(true),
-            depth_compare: Some(wgpu::CompareFunction::Less),
-            stencil: Default::default(),
-            bias: Default::default(),
-        }),
-        multisample: wgpu::MultisampleState {
-            count: MSAA_SAMPLES,
-            ..Default::default()
-        },
+        depth_stencil: Some(depth_state(true, wgpu::CompareFunction::Less)),
+        multisample: multisample(MSAA_SAMPLES),
         fragment: Some(wgpu::FragmentState {
             module,
             entry_point: Some("fs_main"),

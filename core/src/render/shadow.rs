@@ -14,7 +14,7 @@ use glam::{Mat4, Vec3};
 use super::props::{PropInstance, PropKind};
 use super::rig::CharacterBound;
 use super::sss_pass::SPLIT_FORMAT;
-use super::targets::{DEPTH_FORMAT, MSAA_SAMPLES};
+use super::targets::{depth_state, multisample, MSAA_SAMPLES};
 use crate::asset::Model;
 use crate::shader::{compose, ShaderDefs};
 
@@ -334,17 +334,8 @@ fn pipeline(
             cull_mode: None,
             ..Default::default()
         },
-        depth_stencil: Some(wgpu::DepthStencilState {
-            format: DEPTH_FORMAT,
-            depth_write_enabled: Some(false),
-            depth_compare: Some(wgpu::CompareFunction::Less),
-            stencil: Default::default(),
-            bias: Default::default(),
-        }),
-        multisample: wgpu::MultisampleState {
-            count: MSAA_SAMPLES,
-            ..Default::default()
-        },
+        depth_stencil: Some(depth_state(false, wgpu::CompareFunction::Less)),
+        multisample: multisample(MSAA_SAMPLES),
         fragment: Some(wgpu::FragmentState {
             module,
             entry_point: Some("fs_main"),

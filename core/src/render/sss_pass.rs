@@ -8,7 +8,7 @@
 use std::sync::Mutex;
 
 use super::layouts::Layouts;
-use super::targets::{DEPTH_FORMAT, MSAA_SAMPLES};
+use super::targets::{depth_state, multisample, MSAA_SAMPLES};
 use crate::shader::{compose, ShaderDefs};
 use crate::shading::subsurface::{ANGLES, KERNEL_ROWS};
 use crate::shading::{Material, ShadingModel};
@@ -108,17 +108,8 @@ impl SssPass {
                 buffers: &[],
             },
             primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: Some(wgpu::DepthStencilState {
-                format: DEPTH_FORMAT,
-                depth_write_enabled: Some(false),
-                depth_compare: Some(wgpu::CompareFunction::Always),
-                stencil: Default::default(),
-                bias: Default::default(),
-            }),
-            multisample: wgpu::MultisampleState {
-                count: MSAA_SAMPLES,
-                ..Default::default()
-            },
+            depth_stencil: Some(depth_state(false, wgpu::CompareFunction::Always)),
+            multisample: multisample(MSAA_SAMPLES),
             fragment: Some(wgpu::FragmentState {
                 module: &module,
                 entry_point: Some("fs_main"),

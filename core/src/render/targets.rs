@@ -4,6 +4,25 @@
 pub const MSAA_SAMPLES: u32 = 4;
 pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
+/// How a pipeline uses the depth target: written or only read, compared with `compare`.
+pub fn depth_state(write: bool, compare: wgpu::CompareFunction) -> wgpu::DepthStencilState {
+    wgpu::DepthStencilState {
+        format: DEPTH_FORMAT,
+        depth_write_enabled: Some(write),
+        depth_compare: Some(compare),
+        stencil: Default::default(),
+        bias: Default::default(),
+    }
+}
+
+/// `count` samples per pixel (the colour target's), no alpha to coverage.
+pub fn multisample(count: u32) -> wgpu::MultisampleState {
+    wgpu::MultisampleState {
+        count,
+        ..Default::default()
+    }
+}
+
 pub struct Targets {
     pub width: u32,
     pub height: u32,

@@ -13,7 +13,7 @@
 //! ui_gpu.draw(&mut pass);
 //! ```
 
-use super::targets::DEPTH_FORMAT;
+use super::targets::{depth_state, multisample};
 use crate::shader::{compose, ShaderDefs};
 use crate::ui::{UiVertex, MAX_VERTICES};
 
@@ -159,17 +159,8 @@ impl UiRenderer {
                 cull_mode: None,
                 ..Default::default()
             },
-            depth_stencil: Some(wgpu::DepthStencilState {
-                format: DEPTH_FORMAT,
-                depth_write_enabled: Some(false),
-                depth_compare: Some(wgpu::CompareFunction::Always),
-                stencil: Default::default(),
-                bias: Default::default(),
-            }),
-            multisample: wgpu::MultisampleState {
-                count: msaa_samples,
-                ..Default::default()
-            },
+            depth_stencil: Some(depth_state(false, wgpu::CompareFunction::Always)),
+            multisample: multisample(msaa_samples),
             fragment: Some(wgpu::FragmentState {
                 module: &module,
                 entry_point: Some("fs_main"),
