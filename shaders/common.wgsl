@@ -15,12 +15,16 @@ struct Frame {
     // x: exposure; y: 1 when the target is not an sRGB format and we encode by hand;
     // z: 1 to write raw radiance (HDR float targets, numerical checks).
     output: vec4<f32>,
-    // A plane (xyz·p + w ≥ 0: lit) beyond which a straight occluder shadows the light; all
-    // zero: nothing occludes it. Used by the measurement scenes (a shadow edge).
-    light_clip: vec4<f32>,
+    // The key light's shadow map (core/src/render/shadow_map.rs): world → its clip space.
+    shadow_view_proj: mat4x4<f32>,
+    // x: 1 when a shadow map was drawn this frame (0: nothing casts, every point is lit);
+    // y: normal offset (m, half a texel); z: depth bias; w: one texel in uv.
+    shadow: vec4<f32>,
 };
 
 @group(0) @binding(0) var<uniform> frame: Frame;
+@group(0) @binding(1) var shadow_map: texture_depth_2d;
+@group(0) @binding(2) var shadow_sampler: sampler_comparison;
 
 // What a shading model sees at one pixel (world space, unit vectors).
 struct Surface {
@@ -52,9 +56,45 @@ fn safe_normalize(v: vec3<f32>, fallback: vec3<f32>) -> vec3<f32> {
     return v * inverseSqrt(len2);
 }
 
-// 1 where the light reaches world point `p`, 0 behind the occluder's plane.
-fn light_visible(p: vec3<f32>) -> f32 {
-    return select(0.0, 1.0, dot(frame.light_clip.xyz, p) + frame.light_clip.w >= 0.0);
+// The fraction of the key light that reaches world point `p` (1: lit, 0: in shadow), from
+// the shadow map: four bilinear depth comparisons half a texel apart (a 2-texel tent), the
+// point moved `offset` (unit vector) by the normal offset first so a lit surface does not
+// shadow itself. Outside the map's frustum nothing casts: lit.
+fn light_visible(p: vec3<f32>, offset: vec3<f32>) -> f32 {
+    if (frame.shadow.x < 0.5) {
+        return 1.0;
+    }
+    let q = frame.shadow_view_proj * vec4<f32>(p + offset * frame.shadow.y, 1.0);
+    if (q.w <= 0.0) {
+        return 1.0;
+    }
+    let ndc = q.xyz / q.w;
+    let uv = vec2<f32>(0.5 + 0.5 * ndc.x, 0.5 - 0.5 * ndc.y);
+    if (any(uv < vec2<f32>(0.0)) || any(uv > vec2<f32>(1.0))) {
+        return 1.0;
+    }
+    // Beyond the far plane (a receiver behind every caster): compared at the far plane.
+    let depth = min(ndc.z, 1.0) - frame.shadow.z;
+    let h = 0.5 * frame.shadow.w;
+    var lit = 0.0;
+    lit += textureSampleCompareLevel(shadow_map, shadow_sampler, uv + vec2<f32>(-h, -h), depth);
+    lit += textureSampleCompareLevel(shadow_map, shadow_sampler, uv + vec2<f32>(h, -h), depth);
+    lit += textureSampleCompareLevel(shadow_map, shadow_sampler, uv + vec2<f32>(-h, h), depth);
+    lit += textureSampleCompareLevel(shadow_map, shadow_sampler, uv + vec2<f32>(h, h), depth);
+    return 0.25 * lit;
+}
+
+// Where light that leaves at a surface point entered, for the shadow test: a point lit from
+// the front is tested where it is (moved off the surface along n); one lit from behind
+// (translucency, the wrap past the terminator) received its light where the ray toward the
+// light leaves the material, the thickness / |n·l| further along l.
+fn light_visible_at(pos: vec3<f32>, n: vec3<f32>, l: vec3<f32>, thickness: f32) -> f32 {
+    let nl = dot(n, l);
+    if (nl >= 0.0) {
+        // The offset grows as the light grazes (sin of its angle to n), where acne would.
+        return light_visible(pos, n * sqrt(max(1.0 - nl * nl, 0.0)));
+    }
+    return light_visible(pos + l * (thickness / max(-nl, 0.05)), l);
 }
 
 fn make_surface(pos: vec3<f32>, normal: vec3<f32>, tangent: vec4<f32>, albedo: vec3<f32>,
@@ -75,9 +115,10 @@ fn make_surface(pos: vec3<f32>, normal: vec3<f32>, tangent: vec4<f32>, albedo: v
     let to_light = frame.light_pos.xyz - pos;
     s.light_dist = max(length(to_light), 1e-3);
     s.l = safe_normalize(to_light, s.n);
-    s.light = frame.light_pos.w * frame.light_color.rgb * light_visible(pos);
     s.albedo = albedo;
     s.thickness = max(thickness, 0.0);
+    s.light = frame.light_pos.w * frame.light_color.rgb
+        * light_visible_at(pos, s.n, s.l, s.thickness);
     s.curvature_radius = FLAT_RADIUS_M;
     return s;
 }

@@ -48,7 +48,9 @@ fn prop_radiance(in: VertexOut) -> vec3<f32> {
     let d = max(length(to_light), 1e-3);
     let l = to_light / d;
     let v = safe_normalize(frame.camera_pos.xyz - in.world_pos, n);
-    let e = frame.light_pos.w * frame.light_color.rgb / (d * d) * max(dot(n, l), 0.0);
+    // The character's shadow falls on the floor and the props (the key light's shadow map).
+    let e = frame.light_pos.w * frame.light_color.rgb / (d * d) * max(dot(n, l), 0.0)
+        * light_visible(in.world_pos, n);
     let h = safe_normalize(l + v, n);
     let spec = 0.04 * pow(max(dot(n, h), 0.0), 32.0) * 5.0;
     return frame.ambient.rgb * albedo + e * (albedo * INV_PI + vec3<f32>(spec));

@@ -97,7 +97,7 @@ fn sss_spread(s: Surface) -> vec3<f32> {
         let n = normalize(s.n + dir * tilt);
         let mu = max(dot(n, d) / r, 0.0);
         let area = select(1.0, (rho - delta[c]) / rho, rho > 1e-6) * max(1.0 - ddelta[c], 0.0);
-        let seen = light_visible(s.pos + back);
+        let seen = light_visible(s.pos + back, s.n);
         out[c] = light[c] * seen / (r * r) * mu * sss_oblique(mu)[c] * area;
     }
     return out;

@@ -15,7 +15,7 @@
 //! then off by F_t/C, a few per cent at normal view: the boundary's exit distribution is part
 //! of what a model gets right or wrong).
 
-use glam::{Mat4, Vec3, Vec4};
+use glam::{Mat4, Vec3};
 
 use crate::anim::Pose;
 use crate::asset::{
@@ -25,6 +25,9 @@ use crate::reference::Scene;
 use crate::render::{DrawSet, FrameView, Gpu, Light, Offscreen, Renderer};
 use crate::shading::{fresnel, subsurface, units, Material, ShadingModel};
 
+/// The shadow map's size in these scenes: texels of 0.07 mm (white coat's edge view) or
+/// finer, below the reference's narrowest strips (the game's map is 1024² over 2.3 m).
+const SHADOW_MAP_SIZE: u32 = 4096;
 /// Rendered target size (pixels per side).
 pub const PIXELS: u32 = 512;
 /// Distance of a directional light (m): far enough that its rays are parallel to f32 precision
@@ -221,7 +224,7 @@ impl Probe {
                 // range for the whole profile).
                 let h_m = (h_mm / units::MM_PER_M) as f32;
                 let half = last * 1.1 + 2.0;
-                let light = (Vec3::new(0.0, h_m, 0.0), 100.0 * h_m * h_m, Vec4::ZERO);
+                let light = (Vec3::new(0.0, h_m, 0.0), 100.0 * h_m * h_m, None);
                 (
                     plane(half),
                     light,
@@ -236,7 +239,7 @@ impl Probe {
                 let half = edges[0].abs().max(last.abs()) * 1.1 + 2.0;
                 // Lit where x ≥ 0; the beam travels toward −x.
                 let dir = Vec3::new(t.sin(), t.cos(), 0.0);
-                let light = (dir * FAR_M, FAR_M * FAR_M, Vec4::new(1.0, 0.0, 0.0, 0.0));
+                let light = (dir * FAR_M, FAR_M * FAR_M, Some(edge_occluder(t, half)));
                 (
                     plane(half),
                     light,
@@ -247,7 +250,7 @@ impl Probe {
                 )
             }
             Scene::Sphere { radius_mm } => {
-                let light = (Vec3::Z * FAR_M, FAR_M * FAR_M, Vec4::ZERO);
+                let light = (Vec3::Z * FAR_M, FAR_M * FAR_M, None);
                 let half = radius_mm * 1.05;
                 // Toward the light, from the side (the terminator across the middle), from
                 // behind: every band is seen somewhere at n·v ≥ MIN_NV.
@@ -275,7 +278,7 @@ impl Probe {
                     half_mm: 20.0,
                     thickness_mm,
                 };
-                let light = (-Vec3::Y * FAR_M, FAR_M * FAR_M, Vec4::ZERO);
+                let light = (-Vec3::Y * FAR_M, FAR_M * FAR_M, None);
                 (
                     geometry,
                     light,
@@ -287,7 +290,21 @@ impl Probe {
             }
         };
         self.load(gpu, geometry, material)?;
-        let (position, intensity, _) = light;
+        // The measured medium casts nothing; the shadow edge's occluder casts through the
+        // key light's shadow map, as the game's character does.
+        match &light.2 {
+            Some(occluder) => self.renderer.set_shadow_scene(
+                gpu,
+                false,
+                &occluder.triangles,
+                Some((occluder.centre, occluder.radius)),
+                SHADOW_MAP_SIZE,
+            ),
+            None => self
+                .renderer
+                .set_shadow_scene(gpu, false, &[], None, SHADOW_MAP_SIZE),
+        }
+        let (position, intensity) = (light.0, light.1);
         // Per unit source power (point light: I = P/4π per m², M in mm⁻² = per m² × 1e-6) or
         // per unit irradiance (directional lights; the edge's on the surface).
         let per_unit = match *scene {
@@ -311,7 +328,7 @@ impl Probe {
         let mut sums = vec![[0.0f64; 3]; nbins];
         let mut counts = vec![0usize; nbins];
         for view in &views {
-            let pixels = self.draw(gpu, shading, light, view);
+            let pixels = self.draw(gpu, shading, (position, intensity), view);
             let half = view.half_mm;
             let px_mm = 2.0 * half / PIXELS as f64;
             let right = (-view.eye).cross(view.up).as_dvec3();
@@ -407,7 +424,7 @@ impl Probe {
         &mut self,
         gpu: &Gpu,
         shading: ShadingModel,
-        (position, intensity, clip): (Vec3, f32, Vec4),
+        (position, intensity): (Vec3, f32),
         view: &View,
     ) -> Vec<[f32; 4]> {
         let (eye, up) = (view.eye, view.up);
@@ -419,7 +436,6 @@ impl Probe {
             intensity,
             color: Vec3::ONE,
             ambient: Vec3::ZERO,
-            clip,
         };
         self.renderer.prepare(
             &gpu.queue,
@@ -449,6 +465,35 @@ impl Probe {
         self.target.copy_out(&mut encoder);
         gpu.queue.submit([encoder.finish()]);
         self.target.read_f16(gpu)
+    }
+}
+
+/// A shadow-only occluder and the sphere the light's frustum is fitted to.
+struct Occluder {
+    triangles: Vec<[f32; 3]>,
+    centre: Vec3,
+    radius: f32,
+}
+
+/// The shadow edge's occluder: an opaque horizontal blade a quarter of the view's half-width
+/// above the medium, its edge placed so that a light at incidence `theta` (rad, travelling
+/// toward −x) shadows exactly x < 0; the map's frustum holds the viewed medium and the blade.
+fn edge_occluder(theta: f32, half_mm: f64) -> Occluder {
+    let half = (half_mm / units::MM_PER_M) as f32;
+    let h = 0.25 * half;
+    let x_edge = h * theta.tan();
+    let (x0, z) = (-4.0 * half, 4.0 * half);
+    let corner = |x: f32, z: f32| [x, h, z];
+    let (a, b, c, d) = (
+        corner(x0, -z),
+        corner(x_edge, -z),
+        corner(x_edge, z),
+        corner(x0, z),
+    );
+    Occluder {
+        triangles: vec![a, b, c, a, c, d],
+        centre: Vec3::new(0.0, 0.5 * h, 0.0),
+        radius: 1.05 * (2.0 * half * half + 0.25 * h * h).sqrt() + x_edge,
     }
 }
 

@@ -33,6 +33,10 @@ fn all_shaders() -> Vec<(String, String)> {
         compose("shadow", &ShaderDefs::new()).unwrap(),
     ));
     out.push(("shadow/split".into(), compose("shadow", &split).unwrap()));
+    out.push((
+        "shadow_caster".into(),
+        compose("shadow_caster", &ShaderDefs::new()).unwrap(),
+    ));
     out
 }
 

@@ -23,7 +23,7 @@ use dermis_core::render::{
     DrawSet, FrameView, Gpu, Light, Offscreen, PassTimer, Renderer, OFFSCREEN_FORMAT,
 };
 use dermis_core::shading::{subsurface, Material, ShadingModel};
-use glam::{Mat4, Vec3, Vec4};
+use glam::{Mat4, Vec3};
 use serde_json::{json, Map, Value};
 
 use crate::cmd::pareto::{self, aggregate, family, SceneScore};
@@ -196,7 +196,6 @@ impl CostScene {
                     intensity: 0.01,
                     color: Vec3::ONE,
                     ambient: Vec3::splat(0.02),
-                    clip: Vec4::ZERO,
                 },
                 exposure: 1.0,
             },

@@ -114,6 +114,9 @@ pub struct ShadeOut {
 pub struct Harness<'g> {
     gpu: &'g Gpu,
     frame_layout: wgpu::BindGroupLayout,
+    /// No shadow map (the frame's `shadow.x` is 0: every point lit), bound as the renderer
+    /// binds its map.
+    no_shadow: (wgpu::TextureView, wgpu::Sampler),
     model_layout: wgpu::BindGroupLayout,
     io_layout: wgpu::BindGroupLayout,
     shade_pipelines: HashMap<ShadingModel, wgpu::ComputePipeline>,
@@ -158,9 +161,14 @@ impl<'g> Harness<'g> {
         };
         Self {
             gpu,
-            frame_layout: make(
-                "conformance frame",
-                &[uniform(0, wgpu::ShaderStages::COMPUTE)],
+            frame_layout: make("conformance frame", &{
+                let [map, sampler] =
+                    super::layouts::shadow_map_entries(wgpu::ShaderStages::COMPUTE);
+                [uniform(0, wgpu::ShaderStages::COMPUTE), map, sampler]
+            }),
+            no_shadow: (
+                super::shadow_map::placeholder(device, &gpu.queue),
+                super::shadow_map::comparison_sampler(device),
             ),
             model_layout: make(
                 "conformance model",
@@ -295,7 +303,7 @@ impl<'g> Harness<'g> {
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
             mapped_at_creation: false,
         });
-        // Identity view_proj, the ambient; the rest (light clip plane included) 0: no clipping.
+        // Identity view_proj, the ambient; the rest 0 (no shadow map: every point lit).
         let frame = FrameUniform {
             view_proj: glam::Mat4::IDENTITY.to_cols_array_2d(),
             ambient: [ambient.x as f32, ambient.y as f32, ambient.z as f32, 0.0],
@@ -314,10 +322,20 @@ impl<'g> Harness<'g> {
         let frame_bg = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("conformance frame"),
             layout: &self.frame_layout,
-            entries: &[wgpu::BindGroupEntry {
-                binding: 0,
-                resource: frame_buf.as_entire_binding(),
-            }],
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: frame_buf.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::TextureView(&self.no_shadow.0),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: wgpu::BindingResource::Sampler(&self.no_shadow.1),
+                },
+            ],
         });
         let pipeline = &self.shade_pipelines[&model];
         let mut encoder = device.create_command_encoder(&Default::default());

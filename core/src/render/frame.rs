@@ -2,6 +2,8 @@
 
 use glam::{Mat4, Vec3};
 
+use super::shadow_map::ShadowView;
+
 /// A point light.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Light {
@@ -10,9 +12,6 @@ pub struct Light {
     pub intensity: f32,
     pub color: Vec3,
     pub ambient: Vec3,
-    /// A world-space plane (xyz·p + w ≥ 0: lit) beyond which a straight occluder shadows the
-    /// light; zero: nothing occludes it.
-    pub clip: glam::Vec4,
 }
 
 impl Default for Light {
@@ -23,7 +22,6 @@ impl Default for Light {
             intensity: 30.0,
             color: Vec3::new(1.0, 0.97, 0.92),
             ambient: Vec3::new(0.10, 0.11, 0.13),
-            clip: glam::Vec4::ZERO,
         }
     }
 }
@@ -38,8 +36,10 @@ pub struct FrameUniform {
     pub ambient: [f32; 4],
     /// x: exposure, y: manual sRGB encode flag, z: raw radiance output flag.
     pub output: [f32; 4],
-    /// The light's clip plane (zero: none).
-    pub light_clip: [f32; 4],
+    /// World → the shadow map's clip space.
+    pub shadow_view_proj: [[f32; 4]; 4],
+    /// x: shadow map drawn (1) or not (0); y: normal offset (m); z: depth bias; w: texel (uv).
+    pub shadow: [f32; 4],
 }
 
 impl FrameUniform {
@@ -50,6 +50,7 @@ impl FrameUniform {
         exposure: f32,
         manual_srgb: bool,
         raw: bool,
+        shadow: &ShadowView,
     ) -> Self {
         Self {
             view_proj: view_proj.to_cols_array_2d(),
@@ -63,7 +64,8 @@ impl FrameUniform {
                 f32::from(u8::from(raw)),
                 0.0,
             ],
-            light_clip: light.clip.to_array(),
+            shadow_view_proj: shadow.view_proj.to_cols_array_2d(),
+            shadow: shadow.params(),
         }
     }
 }

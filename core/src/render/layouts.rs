@@ -1,6 +1,6 @@
 //! Bind group layouts, created once.
 
-/// Group 0: the frame uniform. Group 1: a shading model's parameters (and LUT). Group 2: the skinned
+/// Group 0: the frame uniform and the shadow map. Group 1: a shading model's parameters (and LUT). Group 2: the skinned
 /// object (joint palette, base colour, sampler). Props: group 1 is their material.
 pub struct Layouts {
     pub frame: wgpu::BindGroupLayout,
@@ -20,6 +20,30 @@ pub(super) fn uniform(binding: u32, visibility: wgpu::ShaderStages) -> wgpu::Bin
         },
         count: None,
     }
+}
+
+/// Bindings 1 and 2 of the frame group: the key light's shadow map and its comparison sampler.
+pub(crate) fn shadow_map_entries(
+    visibility: wgpu::ShaderStages,
+) -> [wgpu::BindGroupLayoutEntry; 2] {
+    [
+        wgpu::BindGroupLayoutEntry {
+            binding: 1,
+            visibility,
+            ty: wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Depth,
+                view_dimension: wgpu::TextureViewDimension::D2,
+                multisampled: false,
+            },
+            count: None,
+        },
+        wgpu::BindGroupLayoutEntry {
+            binding: 2,
+            visibility,
+            ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison),
+            count: None,
+        },
+    ]
 }
 
 fn texture(binding: u32) -> wgpu::BindGroupLayoutEntry {
@@ -54,7 +78,15 @@ impl Layouts {
             })
         };
         Self {
-            frame: make("frame", &[uniform(0, vf)]),
+            // The frame uniform, the key light's shadow map and its comparison sampler.
+            frame: make(
+                "frame",
+                &[
+                    uniform(0, vf),
+                    shadow_map_entries(wgpu::ShaderStages::FRAGMENT)[0],
+                    shadow_map_entries(wgpu::ShaderStages::FRAGMENT)[1],
+                ],
+            ),
             // The model's uniform and, for pre-integrated models, their LUT.
             model: make(
                 "shading model",

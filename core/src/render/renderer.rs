@@ -9,6 +9,7 @@ use super::pipelines::{PipelineSet, Pipelines};
 use super::props::{PropGpu, PropInstance, PropKind, MAX_INSTANCES};
 use super::rig::CHARACTER;
 use super::shadow::{BlobShadows, Casters};
+use super::shadow_map::{self, ShadowMap, ShadowView, SHADOW_MAP_SIZE};
 use super::sss_pass::{SplitTargets, SssPass};
 use super::targets::Targets;
 use super::timer::PassTimer;
@@ -51,6 +52,16 @@ pub struct Renderer {
     sampler: wgpu::Sampler,
     frame_buffer: wgpu::Buffer,
     frame_group: wgpu::BindGroup,
+    /// The key light's shadow map, once something that casts is loaded (`shadow_map.rs`).
+    shadow_map: Option<ShadowMap>,
+    shadow_sampler: wgpu::Sampler,
+    /// Whether this frame's uniform says a shadow map is drawn (set by `prepare`).
+    shadow_drawn: std::cell::Cell<bool>,
+    /// The sphere the light's frustum is fitted to; `None`: the character's bound at its
+    /// placement.
+    shadow_bound: Option<(Vec3, f32)>,
+    /// Where the character was last placed.
+    character_world: Mat4,
     character: Option<CharacterGpu>,
     props: Vec<PropGpu>,
     /// Scratch for grouping prop instances by kind (reused, no per-frame allocation).
@@ -92,14 +103,15 @@ impl Renderer {
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        let frame_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("frame"),
-            layout: &layouts.frame,
-            entries: &[wgpu::BindGroupEntry {
-                binding: 0,
-                resource: frame_buffer.as_entire_binding(),
-            }],
-        });
+        let shadow_sampler = shadow_map::comparison_sampler(device);
+        let placeholder = shadow_map::placeholder(device, &gpu.queue);
+        let frame_group = frame_group(
+            device,
+            &layouts,
+            &frame_buffer,
+            &placeholder,
+            &shadow_sampler,
+        );
         Self {
             layouts,
             pipelines,
@@ -107,6 +119,11 @@ impl Renderer {
             sampler,
             frame_buffer,
             frame_group,
+            shadow_map: None,
+            shadow_sampler,
+            shadow_drawn: std::cell::Cell::new(false),
+            shadow_bound: None,
+            character_world: Mat4::IDENTITY,
             character: None,
             props: Vec::new(),
             scratch: Vec::with_capacity(MAX_INSTANCES as usize),
@@ -140,8 +157,51 @@ impl Renderer {
         )?;
         self.character = Some(character);
         self.casters.character = Some(CHARACTER);
+        if self.shadow_map.is_none() {
+            self.ensure_shadow_map(gpu, SHADOW_MAP_SIZE);
+        }
         self.set_material(&gpu.queue, material);
         Ok(())
+    }
+
+    /// Builds the key light's shadow map (once, or again at another size) and binds it to
+    /// the frame group.
+    fn ensure_shadow_map(&mut self, gpu: &Gpu, size: u32) {
+        if self.shadow_map.as_ref().map(|m| m.size) != Some(size) {
+            let map = ShadowMap::new(&gpu.device, &self.layouts, size);
+            self.frame_group = frame_group(
+                &gpu.device,
+                &self.layouts,
+                &self.frame_buffer,
+                &map.view,
+                &self.shadow_sampler,
+            );
+            self.shadow_map = Some(map);
+        }
+    }
+
+    /// A measurement scene's shadows: whether the character (the measured medium) casts, a
+    /// shadow-only occluder (world-space triangles; empty: none) and the sphere the light's
+    /// frustum is fitted to (`None`: the character's bound).
+    pub fn set_shadow_scene(
+        &mut self,
+        gpu: &Gpu,
+        character_casts: bool,
+        occluder: &[[f32; 3]],
+        bound: Option<(Vec3, f32)>,
+        size: u32,
+    ) {
+        self.ensure_shadow_map(gpu, size);
+        if let Some(map) = &mut self.shadow_map {
+            map.character_casts = character_casts;
+            map.set_occluder(&gpu.device, occluder);
+        }
+        self.shadow_bound = bound;
+    }
+
+    /// Whether this renderer has a shadow map (something that casts was loaded).
+    pub fn has_shadow_map(&self) -> bool {
+        self.shadow_map.is_some()
     }
 
     /// Uploads a scene: the character with `material`'s constants and every prop model (the
@@ -247,13 +307,44 @@ impl Renderer {
         if let Some(c) = &mut self.character {
             c.update_pose(queue, model, pose, world);
         }
+        self.character_world = world;
         if let Some(s) = &mut self.shadows {
             s.set_character(&CHARACTER, world);
         }
     }
 
-    /// Writes the frame uniform.
+    /// This frame's shadow view for `light` (nothing casts: [`ShadowView::NONE`]).
+    fn shadow_view(&self, light: Vec3) -> ShadowView {
+        let Some(map) = self
+            .shadow_map
+            .as_ref()
+            .filter(|m| m.casts(self.character.is_some()))
+        else {
+            return ShadowView::NONE;
+        };
+        let (centre, radius) = self.shadow_bound.unwrap_or_else(|| {
+            let (c, r) = CHARACTER.sphere_at(Vec3::ZERO);
+            let w = self.character_world;
+            let scale = w
+                .x_axis
+                .truncate()
+                .length()
+                .max(w.y_axis.truncate().length());
+            (
+                w.transform_point3(c),
+                r * scale.max(w.z_axis.truncate().length()),
+            )
+        });
+        ShadowView::fit(light, centre, radius, map.size)
+    }
+
+    /// Writes the frame uniform (and the shadow map's light matrix).
     pub fn prepare(&self, queue: &wgpu::Queue, view: &FrameView) {
+        let shadow = self.shadow_view(view.light.position);
+        if let (Some(map), true) = (&self.shadow_map, shadow.drawn) {
+            map.prepare(queue, &shadow);
+        }
+        self.shadow_drawn.set(shadow.drawn);
         let raw = matches!(
             self.format,
             wgpu::TextureFormat::Rgba16Float | wgpu::TextureFormat::Rgba32Float
@@ -266,6 +357,7 @@ impl Renderer {
             view.exposure,
             manual_srgb,
             raw,
+            &shadow,
         );
         queue.write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(&u));
     }
@@ -282,6 +374,32 @@ impl Renderer {
     /// Records the frame into `encoder`, resolving into `output`: one render pass, or for a
     /// character drawn with a screen-space model the scene pass and the subsurface pass.
     pub fn encode(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        targets: &Targets,
+        output: &wgpu::TextureView,
+        draw: DrawSet,
+        ui: Option<&UiRenderer>,
+        timer: Option<&PassTimer>,
+    ) -> RenderStats {
+        let shadow_draws = self.encode_shadow_map(encoder, draw);
+        let mut stats = self.encode_scene(encoder, targets, output, draw, ui, timer);
+        stats.draw_calls += shadow_draws;
+        stats
+    }
+
+    /// The shadow map's depth-only pass, when this frame's uniform says one is drawn.
+    fn encode_shadow_map(&self, encoder: &mut wgpu::CommandEncoder, draw: DrawSet) -> u32 {
+        match &self.shadow_map {
+            Some(map) if self.shadow_drawn.get() => {
+                let character = self.character.as_ref().filter(|_| draw.character);
+                map.encode(encoder, character)
+            }
+            _ => 0,
+        }
+    }
+
+    fn encode_scene(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         targets: &Targets,
@@ -462,6 +580,34 @@ impl Renderer {
         }
         stats
     }
+}
+
+/// Group 0: the frame uniform and the shadow map bound with the comparison sampler.
+fn frame_group(
+    device: &wgpu::Device,
+    layouts: &Layouts,
+    buffer: &wgpu::Buffer,
+    shadow_map: &wgpu::TextureView,
+    sampler: &wgpu::Sampler,
+) -> wgpu::BindGroup {
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("frame"),
+        layout: &layouts.frame,
+        entries: &[
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: buffer.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: wgpu::BindingResource::TextureView(shadow_map),
+            },
+            wgpu::BindGroupEntry {
+                binding: 2,
+                resource: wgpu::BindingResource::Sampler(sampler),
+            },
+        ],
+    })
 }
 
 fn depth_attachment(targets: &Targets) -> wgpu::RenderPassDepthStencilAttachment<'_> {
