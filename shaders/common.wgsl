@@ -20,11 +20,15 @@ struct Frame {
     // x: 1 when a shadow map was drawn this frame (0: nothing casts, every point is lit);
     // y: normal offset (m, half a texel); z: depth bias; w: one texel in uv.
     shadow: vec4<f32>,
+    // The penumbra map (core/src/render/penumbra.rs): x 1 when drawn this frame; y its grid
+    // size; z the shadow map's width (m); w the depth step of an edge (depth units).
+    penumbra: vec4<f32>,
 };
 
 @group(0) @binding(0) var<uniform> frame: Frame;
 @group(0) @binding(1) var shadow_map: texture_depth_2d;
 @group(0) @binding(2) var shadow_sampler: sampler_comparison;
+@group(0) @binding(3) var penumbra_map: texture_2d<f32>;
 
 // What a shading model sees at one pixel (world space, unit vectors).
 struct Surface {

@@ -12,13 +12,53 @@
 
 // LUT rows (core/src/shading/preintegrated.rs): 32 rows of sphere response over
 // (n·l, curvature), then the exit/entry Fresnel factors over cos θ, then the backlit slab's
-// transmittance over log2(t/0.25 mm)/9.
-const LUT_ROWS: f32 = 34.0;
+// transmittance over log2(t/0.25 mm)/9, then the edge-spread function (log2) over the signed
+// distance to a shadow edge (core/src/shading/edge_spread.rs).
+const LUT_ROWS: f32 = 35.0;
 const CURVATURE_ROWS: f32 = 32.0;
+const PENUMBRA_ROW: f32 = 34.0;
+// The penumbra row spans ±PENUMBRA_SPAN_MM, quadratically in the distance.
+const PENUMBRA_SPAN_MM: f32 = 128.0;
 
 fn lut_row(u: f32, row: f32) -> vec4<f32> {
     let u_tex = (clamp(u, 0.0, 1.0) * 63.0 + 0.5) / 64.0;
     return textureSampleLevel(lut, lut_sampler, vec2<f32>(u_tex, (row + 0.5) / LUT_ROWS), 0.0);
+}
+
+// The key light's visibility per channel. `v` is the shadow map's test at this point; near the
+// edge of a caster's shadow it becomes the edge-spread function of the material's kernel at the
+// point's signed distance from that edge (the penumbra map gives the nearest edge of a caster
+// in front of the point; within the test's own two-texel tent its fraction places the edge
+// more finely): light bleeds into the shadow as far as the material carries it, red furthest.
+fn penumbra(s: Surface, v: f32) -> vec3<f32> {
+    let nl = dot(s.n, s.l);
+    if (frame.penumbra.x < 0.5 || nl <= 0.0) {
+        return vec3<f32>(v);
+    }
+    let q = frame.shadow_view_proj * vec4<f32>(s.pos, 1.0);
+    if (q.w <= 0.0) {
+        return vec3<f32>(v);
+    }
+    let ndc = q.xyz / q.w;
+    let uv = vec2<f32>(0.5 + 0.5 * ndc.x, 0.5 - 0.5 * ndc.y);
+    if (any(uv < vec2<f32>(0.0)) || any(uv > vec2<f32>(1.0))) {
+        return vec3<f32>(v);
+    }
+    let grid = frame.penumbra.y;
+    let cell = vec2<i32>(clamp(uv * grid, vec2<f32>(0.0), vec2<f32>(grid - 1.0)));
+    let seed = textureLoad(penumbra_map, cell, 0);
+    if (seed.w < 0.5 || seed.z >= min(ndc.z, 1.0) - frame.penumbra.w) {
+        return vec3<f32>(v);
+    }
+    // Across the light's image plane, stretched onto the surface by the incidence.
+    let to_mm = frame.penumbra.z * 1000.0 / max(nl, 0.25);
+    let texel_mm = frame.shadow.w * to_mm;
+    var d = select(-1.0, 1.0, v >= 0.5) * max(length(seed.xy - uv) * to_mm, texel_mm);
+    if (v > 0.0 && v < 1.0) {
+        d = (2.0 * v - 1.0) * texel_mm;
+    }
+    let t = sign(d) * sqrt(min(abs(d) / PENUMBRA_SPAN_MM, 1.0));
+    return exp2(lut_row(0.5 * (t + 1.0), PENUMBRA_ROW).rgb);
 }
 
 fn shade(s: Surface) -> vec3<f32> {
@@ -51,5 +91,11 @@ fn shade(s: Surface) -> vec3<f32> {
     let ball = lut_row(log2(max(2.0 * rho_mm * back, 0.25) / 0.25) / 9.0, CURVATURE_ROWS + 1.0).rgb;
     let through = back * entry * max(slab - ball, vec3<f32>(0.0));
     let ambient = PI * frame.ambient.rgb * model.albedo;
-    return exit * (ambient + irradiance(s) * (response + through));
+    // The light before its shadow test (s.light carries the hard test `v`), so the response
+    // can take the penumbra's per-channel visibility instead; translucency keeps `v`, tested
+    // where it enters on the far side.
+    let seen = light_visible_at(s.pos, s.n, s.l, s.thickness);
+    let full = select(s.light, frame.light_pos.w * frame.light_color.rgb, frame.shadow.x > 0.5);
+    let e_full = full / (s.light_dist * s.light_dist);
+    return exit * (ambient + e_full * response * penumbra(s, seen) + irradiance(s) * through);
 }

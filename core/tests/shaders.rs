@@ -34,6 +34,10 @@ fn all_shaders() -> Vec<(String, String)> {
     ));
     out.push(("shadow/split".into(), compose("shadow", &split).unwrap()));
     out.push((
+        "penumbra".into(),
+        compose("penumbra", &ShaderDefs::new()).unwrap(),
+    ));
+    out.push((
         "shadow_caster".into(),
         compose("shadow_caster", &ShaderDefs::new()).unwrap(),
     ));

@@ -167,7 +167,7 @@ impl CharacterGpu {
                 let lut = m.effects().lut.then(|| {
                     let size = (
                         crate::shading::preintegrated::LUT_U as u32,
-                        crate::shading::preintegrated::LUT_ROWS as u32,
+                        crate::shading::preintegrated::TEXTURE_ROWS as u32,
                     );
                     texture::rgba16f(device, size, m.name())
                 });

@@ -116,7 +116,7 @@ pub struct Harness<'g> {
     frame_layout: wgpu::BindGroupLayout,
     /// No shadow map (the frame's `shadow.x` is 0: every point lit), bound as the renderer
     /// binds its map.
-    no_shadow: (wgpu::TextureView, wgpu::Sampler),
+    no_shadow: (wgpu::TextureView, wgpu::Sampler, wgpu::TextureView),
     model_layout: wgpu::BindGroupLayout,
     io_layout: wgpu::BindGroupLayout,
     shade_pipelines: HashMap<ShadingModel, wgpu::ComputePipeline>,
@@ -162,13 +162,19 @@ impl<'g> Harness<'g> {
         Self {
             gpu,
             frame_layout: make("conformance frame", &{
-                let [map, sampler] =
+                let [map, sampler, penumbra] =
                     super::layouts::shadow_map_entries(wgpu::ShaderStages::COMPUTE);
-                [uniform(0, wgpu::ShaderStages::COMPUTE), map, sampler]
+                [
+                    uniform(0, wgpu::ShaderStages::COMPUTE),
+                    map,
+                    sampler,
+                    penumbra,
+                ]
             }),
             no_shadow: (
                 super::shadow_map::placeholder(device, &gpu.queue),
                 super::shadow_map::comparison_sampler(device),
+                super::penumbra::grid_texture(device, 1, "no penumbra map"),
             ),
             model_layout: make(
                 "conformance model",
@@ -334,6 +340,10 @@ impl<'g> Harness<'g> {
                 wgpu::BindGroupEntry {
                     binding: 2,
                     resource: wgpu::BindingResource::Sampler(&self.no_shadow.1),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 3,
+                    resource: wgpu::BindingResource::TextureView(&self.no_shadow.2),
                 },
             ],
         });

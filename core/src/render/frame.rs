@@ -40,6 +40,8 @@ pub struct FrameUniform {
     pub shadow_view_proj: [[f32; 4]; 4],
     /// x: shadow map drawn (1) or not (0); y: normal offset (m); z: depth bias; w: texel (uv).
     pub shadow: [f32; 4],
+    /// x: penumbra map drawn; y: its grid size; z: the shadow map's width (m); w: edge gap.
+    pub penumbra: [f32; 4],
 }
 
 impl FrameUniform {
@@ -51,6 +53,7 @@ impl FrameUniform {
         manual_srgb: bool,
         raw: bool,
         shadow: &ShadowView,
+        penumbra_grid: u32,
     ) -> Self {
         Self {
             view_proj: view_proj.to_cols_array_2d(),
@@ -66,6 +69,7 @@ impl FrameUniform {
             ],
             shadow_view_proj: shadow.view_proj.to_cols_array_2d(),
             shadow: shadow.params(),
+            penumbra: shadow.penumbra_params(penumbra_grid),
         }
     }
 }

@@ -22,10 +22,11 @@ pub(super) fn uniform(binding: u32, visibility: wgpu::ShaderStages) -> wgpu::Bin
     }
 }
 
-/// Bindings 1 and 2 of the frame group: the key light's shadow map and its comparison sampler.
+/// Bindings 1–3 of the frame group: the key light's shadow map, its comparison sampler and
+/// the penumbra map (`penumbra.rs`).
 pub(crate) fn shadow_map_entries(
     visibility: wgpu::ShaderStages,
-) -> [wgpu::BindGroupLayoutEntry; 2] {
+) -> [wgpu::BindGroupLayoutEntry; 3] {
     [
         wgpu::BindGroupLayoutEntry {
             binding: 1,
@@ -41,6 +42,16 @@ pub(crate) fn shadow_map_entries(
             binding: 2,
             visibility,
             ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison),
+            count: None,
+        },
+        wgpu::BindGroupLayoutEntry {
+            binding: 3,
+            visibility,
+            ty: wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                view_dimension: wgpu::TextureViewDimension::D2,
+                multisampled: false,
+            },
             count: None,
         },
     ]
@@ -79,14 +90,10 @@ impl Layouts {
         };
         Self {
             // The frame uniform, the key light's shadow map and its comparison sampler.
-            frame: make(
-                "frame",
-                &[
-                    uniform(0, vf),
-                    shadow_map_entries(wgpu::ShaderStages::FRAGMENT)[0],
-                    shadow_map_entries(wgpu::ShaderStages::FRAGMENT)[1],
-                ],
-            ),
+            frame: make("frame", &{
+                let [map, sampler, penumbra] = shadow_map_entries(wgpu::ShaderStages::FRAGMENT);
+                [uniform(0, vf), map, sampler, penumbra]
+            }),
             // The model's uniform and, for pre-integrated models, their LUT.
             model: make(
                 "shading model",

@@ -14,6 +14,7 @@ mod gpu;
 mod layouts;
 mod mesh;
 mod offscreen;
+mod penumbra;
 mod pipelines;
 mod props;
 mod readback;

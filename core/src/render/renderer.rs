@@ -5,6 +5,7 @@ use glam::{Mat4, Vec3};
 use super::character::CharacterGpu;
 use super::frame::{FrameUniform, Light};
 use super::layouts::Layouts;
+use super::penumbra::{self, Penumbra};
 use super::pipelines::{PipelineSet, Pipelines};
 use super::props::{PropGpu, PropInstance, PropKind, MAX_INSTANCES};
 use super::rig::CHARACTER;
@@ -54,6 +55,8 @@ pub struct Renderer {
     frame_group: wgpu::BindGroup,
     /// The key light's shadow map, once something that casts is loaded (`shadow_map.rs`).
     shadow_map: Option<ShadowMap>,
+    /// The penumbra map, when the pipelines reach a model that filters its shadow with it.
+    penumbra: Option<Penumbra>,
     shadow_sampler: wgpu::Sampler,
     /// Whether this frame's uniform says a shadow map is drawn (set by `prepare`).
     shadow_drawn: std::cell::Cell<bool>,
@@ -105,12 +108,12 @@ impl Renderer {
         });
         let shadow_sampler = shadow_map::comparison_sampler(device);
         let placeholder = shadow_map::placeholder(device, &gpu.queue);
+        let no_penumbra = penumbra::grid_texture(device, 1, "no penumbra map");
         let frame_group = frame_group(
             device,
             &layouts,
             &frame_buffer,
-            &placeholder,
-            &shadow_sampler,
+            (&placeholder, &shadow_sampler, &no_penumbra),
         );
         Self {
             layouts,
@@ -120,6 +123,7 @@ impl Renderer {
             frame_buffer,
             frame_group,
             shadow_map: None,
+            penumbra: None,
             shadow_sampler,
             shadow_drawn: std::cell::Cell::new(false),
             shadow_bound: None,
@@ -169,12 +173,24 @@ impl Renderer {
     fn ensure_shadow_map(&mut self, gpu: &Gpu, size: u32) {
         if self.shadow_map.as_ref().map(|m| m.size) != Some(size) {
             let map = ShadowMap::new(&gpu.device, &self.layouts, size);
+            let models = self.pipelines.character.built().models;
+            self.penumbra = models
+                .iter()
+                .any(|m| m.effects().penumbra)
+                .then(|| Penumbra::new(&gpu.device, &map));
+            let no_penumbra;
+            let penumbra_view = match &self.penumbra {
+                Some(p) => &p.result,
+                None => {
+                    no_penumbra = penumbra::grid_texture(&gpu.device, 1, "no penumbra map");
+                    &no_penumbra
+                }
+            };
             self.frame_group = frame_group(
                 &gpu.device,
                 &self.layouts,
                 &self.frame_buffer,
-                &map.view,
-                &self.shadow_sampler,
+                (&map.view, &self.shadow_sampler, penumbra_view),
             );
             self.shadow_map = Some(map);
         }
@@ -344,6 +360,10 @@ impl Renderer {
         if let (Some(map), true) = (&self.shadow_map, shadow.drawn) {
             map.prepare(queue, &shadow);
         }
+        let grid = self.penumbra.as_ref().map_or(0, |p| p.size);
+        if let Some(p) = &self.penumbra {
+            p.prepare(queue, shadow.penumbra_params(grid)[3]);
+        }
         self.shadow_drawn.set(shadow.drawn);
         let raw = matches!(
             self.format,
@@ -358,6 +378,7 @@ impl Renderer {
             manual_srgb,
             raw,
             &shadow,
+            grid,
         );
         queue.write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(&u));
     }
@@ -393,7 +414,13 @@ impl Renderer {
         match &self.shadow_map {
             Some(map) if self.shadow_drawn.get() => {
                 let character = self.character.as_ref().filter(|_| draw.character);
-                map.encode(encoder, character)
+                let draws = map.encode(encoder, character);
+                // Only a model that reads the penumbra map pays for it.
+                let reads = draw.character && draw.shading.is_some_and(|m| m.effects().penumbra);
+                if let (Some(p), true) = (&self.penumbra, reads) {
+                    p.encode(encoder);
+                }
+                draws
             }
             _ => 0,
         }
@@ -582,13 +609,12 @@ impl Renderer {
     }
 }
 
-/// Group 0: the frame uniform and the shadow map bound with the comparison sampler.
+/// Group 0: the frame uniform, the shadow map with its comparison sampler, the penumbra map.
 fn frame_group(
     device: &wgpu::Device,
     layouts: &Layouts,
     buffer: &wgpu::Buffer,
-    shadow_map: &wgpu::TextureView,
-    sampler: &wgpu::Sampler,
+    (shadow_map, sampler, penumbra): (&wgpu::TextureView, &wgpu::Sampler, &wgpu::TextureView),
 ) -> wgpu::BindGroup {
     device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some("frame"),
@@ -605,6 +631,10 @@ fn frame_group(
             wgpu::BindGroupEntry {
                 binding: 2,
                 resource: wgpu::BindingResource::Sampler(sampler),
+            },
+            wgpu::BindGroupEntry {
+                binding: 3,
+                resource: wgpu::BindingResource::TextureView(penumbra),
             },
         ],
     })

@@ -40,6 +40,8 @@ pub struct ShadowView {
     pub texel_m: f32,
     /// The depth bias in the map's depth units.
     pub bias: f32,
+    /// Depth units per metre along the light, at the casters' centre.
+    pub depth_per_m: f32,
     /// Texels per side.
     pub size: u32,
 }
@@ -51,6 +53,7 @@ impl ShadowView {
         drawn: false,
         texel_m: 0.0,
         bias: 0.0,
+        depth_per_m: 0.0,
         size: 1,
     };
 
@@ -83,6 +86,7 @@ impl ShadowView {
                 drawn: true,
                 texel_m,
                 bias: DEPTH_BIAS_TEXELS * texel_m / (2.0 * radius),
+                depth_per_m: 1.0 / (2.0 * radius),
                 size,
             };
         }
@@ -98,6 +102,7 @@ impl ShadowView {
             drawn: true,
             texel_m,
             bias: DEPTH_BIAS_TEXELS * texel_m * dz_dd,
+            depth_per_m: dz_dd,
             size,
         }
     }
@@ -109,6 +114,18 @@ impl ShadowView {
             NORMAL_OFFSET_TEXELS * self.texel_m,
             self.bias,
             1.0 / self.size as f32,
+        ]
+    }
+
+    /// The frame uniform's `penumbra` member for a map with a penumbra grid of `grid`
+    /// texels (0: none): on, grid size, the map's width (m), the edge gap (depth units).
+    pub fn penumbra_params(&self, grid: u32) -> [f32; 4] {
+        let on = self.drawn && grid > 0;
+        [
+            f32::from(u8::from(on)),
+            grid as f32,
+            self.texel_m * self.size as f32,
+            super::penumbra::EDGE_GAP_M * self.depth_per_m,
         ]
     }
 }

@@ -29,6 +29,7 @@ pub const MODULES: &[(&str, &str)] = &[
     ("prop", include_str!("../../../shaders/prop.wgsl")),
     ("ui", include_str!("../../../shaders/ui.wgsl")),
     ("shadow", include_str!("../../../shaders/shadow.wgsl")),
+    ("penumbra", include_str!("../../../shaders/penumbra.wgsl")),
     (
         "shadow_caster",
         include_str!("../../../shaders/shadow_caster.wgsl"),

@@ -11,6 +11,7 @@ pub mod bake;
 pub mod burley;
 pub mod conformance;
 pub mod dipole;
+pub mod edge_spread;
 pub mod fresnel;
 pub mod material;
 pub mod oss;

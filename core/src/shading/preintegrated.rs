@@ -32,6 +32,11 @@ pub const LUT_V: usize = 32;
 /// row `LUT_V + 1` the diffuse transmittance T of a backlit slab (rgb) over
 /// u = log2(t/0.25 mm)/[`SLAB_SPAN`] (0.25–128 mm), dense enough for linear filtering.
 pub const LUT_ROWS: usize = LUT_V + 2;
+/// The texture the renderer uploads has one more row, made at load from the material's
+/// kernel rather than shipped: the edge-spread function (log2, rgb) over the signed distance
+/// to a shadow edge ([`edge_spread`](super::edge_spread)), read with the penumbra map.
+pub const PENUMBRA_ROW: usize = LUT_ROWS;
+pub const TEXTURE_ROWS: usize = LUT_ROWS + 1;
 /// Doublings of thickness the slab row spans from 0.25 mm.
 pub const SLAB_SPAN: f64 = 9.0;
 
@@ -344,8 +349,9 @@ impl Lut {
 type Cache = Mutex<Vec<(Material, Arc<Lut>)>>;
 static CACHE: Cache = Mutex::new(Vec::new());
 
-/// The LUT for `m`: the shipped one where it was baked for `m`, else baked now (logged: the
-/// sphere rows take a while); cached for the process.
+/// The LUT texture for `m`: the shipped rows where they were baked for `m`, else baked now
+/// (logged: the sphere rows take a while), then the penumbra row ([`PENUMBRA_ROW`]); cached
+/// for the process.
 pub fn lut(m: &Material) -> Arc<Lut> {
     let mut cache = CACHE.lock().unwrap_or_else(|e| e.into_inner());
     if let Some((_, l)) = cache.iter().find(|(k, _)| k == m) {
@@ -353,7 +359,7 @@ pub fn lut(m: &Material) -> Arc<Lut> {
     }
     let budget = bake::DEFAULT_BUDGET;
     let shipped = SHIPPED.iter().find_map(|b| Lut::from_bytes(b, m, &budget));
-    let l = Arc::new(shipped.unwrap_or_else(|| {
+    let shipped = shipped.unwrap_or_else(|| {
         log::info!(
             "preintegrated: baking the sphere LUT of {} (η {}, no shipped table)",
             m.name,
@@ -361,7 +367,12 @@ pub fn lut(m: &Material) -> Arc<Lut> {
         );
         let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
         bake_lut(&bake::for_material(m), m, &budget, threads)
-    }));
+    });
+    let mut texture = shipped;
+    texture
+        .texels
+        .extend(super::edge_spread::lut_row(&bake::for_material(m), LUT_U));
+    let l = Arc::new(texture);
     cache.push((*m, l.clone()));
     l
 }

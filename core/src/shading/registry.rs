@@ -55,6 +55,10 @@ pub struct Effects {
     pub screen_space: bool,
     /// The model samples a pre-integrated LUT (bound next to its uniform).
     pub lut: bool,
+    /// The model filters the key light's shadow by its diffusion profile, reading the
+    /// distance to the nearest shadow edge from the penumbra map (its frames with a shadow
+    /// map run the penumbra passes, `render/penumbra.rs`).
+    pub penumbra: bool,
 }
 
 /// Everything the engine knows about one model: one row of [`TABLE`]. Adding a model is a
@@ -101,6 +105,7 @@ const NONE: Effects = Effects {
     texture: false,
     screen_space: false,
     lut: false,
+    penumbra: false,
 };
 const WARD: Effects = Effects {
     specular: true,
@@ -281,6 +286,7 @@ pub static TABLE: [Descriptor; 9] = [
             subsurface: true,
             translucency: true,
             lut: true,
+            penumbra: true,
             ..NONE
         },
         uniform: subsurface::SubsurfaceUniform::LAYOUT,
