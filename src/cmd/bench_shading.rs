@@ -294,7 +294,16 @@ fn build_report(
         let rings = model.map_or((0, 0), |m| kernel_rings(m, material));
         let mut m_json = Map::new();
         for g in GPUS {
-            let c = mali.and_then(|v| mali_cost(v, model, g, rings, subsurface::ANGLES as usize));
+            let c = mali.and_then(|v| {
+                mali_cost(
+                    v,
+                    model,
+                    g,
+                    rings,
+                    subsurface::ANGLES as usize,
+                    (COST_SIZE.0 * COST_SIZE.1) as f64,
+                )
+            });
             m_json.insert(
                 g.into(),
                 json!({"static": c.map(|c| c.0), "per_pixel": c.map(|c| c.1)}),

@@ -125,8 +125,16 @@ fn options() -> naga::back::spv::Options<'static> {
     }
 }
 
-/// `src` (WGSL) → (vertex SPIR-V words, fragment SPIR-V words) of `vs_main` / `fs_main`.
-pub fn to_spirv(name: &str, src: &str) -> Result<(Vec<u32>, Vec<u32>), String> {
+/// Full-screen passes with a fragment entry point of their own: (name written, composer
+/// module, fragment entry). The penumbra map's seed and jump passes run over its grid, not
+/// the screen; `bench shading` spreads their cycles over the screen's pixels.
+pub const GRID_PASSES: [(&str, &str, &str); 2] = [
+    ("penumbra_seed", "penumbra", "fs_seed"),
+    ("penumbra_jump", "penumbra", "fs_jump"),
+];
+
+/// `src` (WGSL) → (vertex SPIR-V words, fragment SPIR-V words) of `vs_main` / `fs`.
+pub fn to_spirv(name: &str, src: &str, fs: &str) -> Result<(Vec<u32>, Vec<u32>), String> {
     let module = naga::front::wgsl::parse_str(src)
         .map_err(|e| format!("{name}: {}", first_line(&e.emit_to_string(src))))?;
     let info = naga::valid::Validator::new(
@@ -145,7 +153,7 @@ pub fn to_spirv(name: &str, src: &str) -> Result<(Vec<u32>, Vec<u32>), String> {
     };
     Ok((
         stage(naga::ShaderStage::Vertex, "vs_main")?,
-        stage(naga::ShaderStage::Fragment, "fs_main")?,
+        stage(naga::ShaderStage::Fragment, fs)?,
     ))
 }
 
@@ -160,8 +168,16 @@ fn first_line(s: &str) -> String {
 pub fn write_spirv(dir: &Path) -> Result<Vec<String>, String> {
     std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
     let mut names = Vec::new();
-    for (name, src) in sources()? {
-        let (vert, frag) = to_spirv(&name, &src)?;
+    let mut all: Vec<(String, String, &str)> = sources()?
+        .into_iter()
+        .map(|(n, s)| (n, s, "fs_main"))
+        .collect();
+    for (name, module, fs) in GRID_PASSES {
+        let src = compose(module, &ShaderDefs::new()).map_err(|e| format!("{name}: {e}"))?;
+        all.push((name.to_string(), src, fs));
+    }
+    for (name, src, fs) in all {
+        let (vert, frag) = to_spirv(&name, &src, fs)?;
         for (stage, words) in [("vert", vert), ("frag", frag)] {
             let path = dir.join(format!("{name}.{stage}.spv"));
             std::fs::write(&path, bytemuck::cast_slice::<u32, u8>(&words))
@@ -220,13 +236,16 @@ fn extrapolate(mali: &Value, base: &str, gpu: &str, steps: &[(&str, f64)]) -> Op
 /// Mali fragment cycles per pixel of `model` (`None`: unlit) on `gpu`: Mesa's static figure
 /// (each instruction counted once) and the loop-weighted one: the per-channel light loop × 3,
 /// and for screen-space models the subsurface pass with `rings.0` ring iterations of which
-/// `rings.1` take `angles` samples (the rest are under half a pixel and skip theirs).
+/// `rings.1` take `angles` samples (the rest are under half a pixel and skip theirs); for
+/// models with the penumbra effect, the penumbra map's passes over their grid
+/// ([`penumbra_grid_cycles`]) spread over the frame's `pixels`.
 pub fn mali_cost(
     mali: &Value,
     model: Option<ShadingModel>,
     gpu: &str,
     rings: (usize, usize),
     angles: usize,
+    pixels: f64,
 ) -> Option<(f64, f64)> {
     let name = model.map_or("unlit", |m| m.name());
     let bound = |s: &str| mali["shaders"][s][gpu]["frag"]["bound"].as_f64();
@@ -248,7 +267,21 @@ pub fn mali_cost(
             ],
         )?;
     }
+    if model.is_some_and(|m| m.effects().penumbra) {
+        let grid = penumbra_grid_cycles(mali, gpu)? / pixels.max(1.0);
+        stat += grid;
+        weighted += grid;
+    }
     Some((stat, weighted))
+}
+
+/// Fragment cycles of one frame's penumbra passes on `gpu`: the seed pass and one jump pass
+/// per halving over the game's grid (a quarter of the 1024² shadow map per side).
+pub fn penumbra_grid_cycles(mali: &Value, gpu: &str) -> Option<f64> {
+    let bound = |s: &str| mali["shaders"][s][gpu]["frag"]["bound"].as_f64();
+    let grid = (dermis_core::render::SHADOW_MAP_SIZE / 4) as f64;
+    let jumps = grid.log2().ceil();
+    Some(grid * grid * (bound("penumbra_seed")? + jumps * bound("penumbra_jump")?))
 }
 
 pub fn run(args: ShadersArgs) -> Result<(), String> {
