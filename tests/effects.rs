@@ -73,11 +73,16 @@ fn the_game_builds_exactly_the_pipelines_it_can_reach() {
     assert!(!needed.unlit, "the game never draws the unlit baseline");
     // One pipeline per reachable model, one for props, one for the UI, and — because the
     // menu reaches screen-space models — the props' two-target variant and the subsurface
-    // pass; and the blob shadows' two (one per target layout: the props cast).
+    // pass; and the blob shadows' two (one per target layout: the props cast); the key
+    // light's shadow map's depth-only caster (the character casts) and — because the menu
+    // reaches a model with the penumbra effect — the penumbra map's two passes.
     assert!(needed.needs_subsurface_pass() && gg.renderer.has_subsurface_pass());
+    assert!(gg.renderer.has_shadow_map());
+    let penumbra = needed.models.iter().any(|m| m.effects().penumbra);
+    assert!(penumbra);
     assert_eq!(
         after.render_pipelines - before.render_pipelines,
-        needed.models.len() as isize + 6
+        needed.models.len() as isize + 6 + 1 + 2
     );
 }
 

@@ -5,16 +5,13 @@
 //!
 //! # Tiers
 //! An ordered list, richest first: the player's chosen model, then the models of the measured
-//! accuracy–cost front ([`FRONT`]: `tabulated`, `preintegrated`, `ward`) that are cheaper than
-//! it. From `dermis bench shading` (docs/results/shading.md: error against the path-traced
-//! references, Mali-G57 cycles per pixel at close-up, lavapipe time): `tabulated` is by far
-//! the most accurate model (overall mean |ln| error 0.14) but its screen-space pass makes it
-//! ~35× Ward's G57 cycles per pixel (~19× lavapipe time) at close-up; `preintegrated` is the
-//! most accurate single-pass model (1.2) at 1.7× Ward (1.2× lavapipe); `ward` (4.7: a plain
-//! BRDF, no light under the skin) is the floor. Every single-pass model costs 1.2–1.7× Ward, so
-//! only a screen-space choice gets the middle tier: `tabulated` or `burley` →
-//! `[chosen, preintegrated, ward]`; `preintegrated`, `dipole`, `oss`, … → `[chosen, ward]`;
-//! `ward` (or `ward-printed`) → `[ward]`. Every tier's pipeline is built at load by the
+//! accuracy–cost front ([`front`], as `bench shading` measured it) that are cheaper than
+//! it. `dermis bench shading` measures every model's error against the path-traced
+//! references and its Mali-G57 cycles per pixel at close-up, and writes the front, richest
+//! first, to `docs/results/governor-front.txt`, which this module embeds: nothing here is
+//! copied by hand. A choice on the front steps down to the front models after it; a
+//! screen-space choice off the front to the one-pass front models; any other to the front's
+//! floor; `ward` (or `ward-printed`) is the floor. Every tier's pipeline is built at load by the
 //! renderer, so a tier change creates nothing on the GPU.
 //!
 //! # What a frame needs ([`Needs`])
@@ -57,12 +54,26 @@ use crate::shading::ShadingModel;
 /// The most tiers a list holds.
 pub const MAX_TIERS: usize = 3;
 
-/// The measured accuracy–cost front, richest first: the tiers a choice steps down to.
-pub const FRONT: [ShadingModel; MAX_TIERS] = [
-    ShadingModel::Tabulated,
-    ShadingModel::Preintegrated,
-    ShadingModel::Ward,
-];
+/// The measured accuracy–cost front, richest first, as `dermis bench shading` wrote it
+/// (overall error against Mali-G57 cycles): the tiers a choice steps down to.
+const FRONT_FILE: &str = include_str!("../../docs/results/governor-front.txt");
+
+/// [`FRONT_FILE`]'s models (at most [`MAX_TIERS`]; names the registry does not know are
+/// skipped, so a stale file degrades to fewer tiers, never to a wrong one).
+pub fn front() -> &'static [ShadingModel] {
+    static FRONT: std::sync::OnceLock<Vec<ShadingModel>> = std::sync::OnceLock::new();
+    FRONT.get_or_init(|| parse_front(FRONT_FILE))
+}
+
+/// The models of a front file: one name per line, `#` comments.
+pub fn parse_front(text: &str) -> Vec<ShadingModel> {
+    text.lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty() && !l.starts_with('#'))
+        .filter_map(|l| l.parse().ok())
+        .take(MAX_TIERS)
+        .collect()
+}
 
 /// The ordered tier list, richest first (no allocation).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -72,20 +83,25 @@ pub struct Tiers {
 }
 
 impl Tiers {
-    /// `[chosen]` followed by the [`FRONT`] models cheaper than it (see the module docs).
+    /// `[chosen]` followed by the [`front`] models cheaper than it: those after it on the
+    /// front; for a model off the front, the one-pass front models if it is screen-space,
+    /// else the front's floor (see the module docs).
     pub fn for_choice(chosen: ShadingModel) -> Self {
         let mut t = Tiers {
             models: [chosen; MAX_TIERS],
             len: 1,
         };
-        let cheaper: &[ShadingModel] = match chosen {
+        let front = front();
+        let on_front = front.iter().position(|&m| m == chosen);
+        let cheaper = front.iter().enumerate().filter(|&(i, m)| match chosen {
             // A plain BRDF is already the floor.
-            ShadingModel::Ward | ShadingModel::WardPrinted => &[],
-            m if m.effects().screen_space => &FRONT[1..],
-            _ => &FRONT[2..],
-        };
-        for &m in cheaper {
-            if !t.models[..t.len].contains(&m) {
+            ShadingModel::Ward | ShadingModel::WardPrinted => false,
+            _ if on_front.is_some() => Some(i) > on_front,
+            c if c.effects().screen_space => !m.effects().screen_space,
+            _ => i + 1 == front.len(),
+        });
+        for (_, &m) in cheaper {
+            if t.len < MAX_TIERS && !t.models[..t.len].contains(&m) {
                 t.models[t.len] = m;
                 t.len += 1;
             }
@@ -453,6 +469,26 @@ pub fn light_reaches(light_pos: Vec3, intensity: f32, target: Vec3, min_irradian
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_embedded_front_parses_and_ends_on_a_one_pass_model() {
+        let f = front();
+        assert!(f.len() >= 2, "{f:?}");
+        assert!(!f[f.len() - 1].effects().screen_space);
+        assert_eq!(
+            parse_front("# c\n\nward\nnot-a-model\n preintegrated \n"),
+            vec![ShadingModel::Ward, ShadingModel::Preintegrated]
+        );
+        // Every choice starts its own list, and nothing repeats.
+        for m in ShadingModel::ALL {
+            let t = Tiers::for_choice(m);
+            let models = t.as_slice();
+            assert_eq!(models[0], m);
+            for (i, a) in models.iter().enumerate() {
+                assert!(!models[i + 1..].contains(a), "{m}: {models:?}");
+            }
+        }
+    }
 
     #[test]
     fn a_character_in_view_under_the_light_is_covered_and_lit() {

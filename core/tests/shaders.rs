@@ -57,10 +57,15 @@ fn validate(label: &str, source: &str) -> naga::Module {
     // Both backends the app ships must accept it: SPIR-V (Vulkan) and GLSL ES 3.00 (GLES).
     naga::back::spv::write_vec(&module, &info, &naga::back::spv::Options::default(), None)
         .unwrap_or_else(|e| panic!("{label}: SPIR-V: {e}"));
-    for (stage, entry) in [
-        (naga::ShaderStage::Vertex, "vs_main"),
-        (naga::ShaderStage::Fragment, "fs_main"),
-    ] {
+    // Every entry point (most shaders: vs_main + fs_main; the penumbra passes have two
+    // fragment entries, the shadow caster only vertex ones).
+    let entries: Vec<(naga::ShaderStage, String)> = module
+        .entry_points
+        .iter()
+        .map(|e| (e.stage, e.name.clone()))
+        .collect();
+    for (stage, entry) in entries {
+        let entry = entry.as_str();
         let mut glsl = String::new();
         let options = naga::back::glsl::Options {
             version: naga::back::glsl::Version::Embedded {
@@ -94,12 +99,12 @@ fn validate(label: &str, source: &str) -> naga::Module {
 fn every_shader_passes_naga_validation_and_both_backends() {
     for (label, source) in all_shaders() {
         let module = validate(&label, &source);
-        assert!(
-            module.entry_points.iter().any(|e| e.name == "vs_main"),
-            "{label}"
-        );
-        assert!(
-            module.entry_points.iter().any(|e| e.name == "fs_main"),
+        let has = |stage| module.entry_points.iter().any(|e| e.stage == stage);
+        assert!(has(naga::ShaderStage::Vertex), "{label}");
+        // Only the shadow map's casters are depth-only.
+        assert_eq!(
+            has(naga::ShaderStage::Fragment),
+            label != "shadow_caster",
             "{label}"
         );
     }

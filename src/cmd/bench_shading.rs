@@ -32,7 +32,7 @@ use crate::cmd::stats::{median, ratio_ci};
 
 #[derive(clap::Args, Debug)]
 pub struct ShadingArgs {
-    /// Output directory (shading.md, shading.json, pareto.png).
+    /// Output directory (shading.md, shading.json, pareto.png, governor-front.txt).
     #[arg(long)]
     pub out: PathBuf,
     /// Rounds of GPU timing (each round times every model once, in rotating order).
@@ -152,12 +152,16 @@ pub fn run(args: ShadingArgs) -> Result<(), String> {
     std::fs::write(&md_path, &md).map_err(|e| format!("{}: {e}", md_path.display()))?;
     let png = args.out.join("pareto.png");
     pareto::chart(&report, &png)?;
+    let front = args.out.join("governor-front.txt");
+    std::fs::write(&front, pareto::front_file(&report))
+        .map_err(|e| format!("{}: {e}", front.display()))?;
     println!("{md}");
     println!(
-        "wrote {}, {} and {}",
+        "wrote {}, {}, {} and {}",
         json_path.display(),
         md_path.display(),
-        png.display()
+        png.display(),
+        front.display()
     );
     Ok(())
 }

@@ -112,6 +112,32 @@ fn models(report: &Value) -> impl Iterator<Item = &Value> {
     arr(&report["models"])
 }
 
+/// The models on the error–G57-cycles front, richest (most accurate, costliest) first: the
+/// governor's tiers (`governor-front.txt`, embedded by the core).
+pub fn front_models(report: &Value) -> Vec<String> {
+    let mut on: Vec<_> = panel_points(report, true)
+        .0
+        .into_iter()
+        .filter(|p| p.3)
+        .collect();
+    on.sort_by(|a, b| b.1.total_cmp(&a.1));
+    on.into_iter().map(|p| p.0).collect()
+}
+
+/// `governor-front.txt`: a comment, then [`front_models`] one per line.
+pub fn front_file(report: &Value) -> String {
+    let mut out = String::from(
+        "# The measured accuracy–cost front (overall error vs Mali-G57 cycles), richest first:\n\
+         # the governor's tiers. Written by `dermis bench shading --out DIR`; embedded by\n\
+         # core/src/governor.rs.\n",
+    );
+    for m in front_models(report) {
+        out.push_str(&m);
+        out.push('\n');
+    }
+    out
+}
+
 /// The models on the front, cheapest first.
 fn front_names(report: &Value, mali: bool) -> String {
     let mut on: Vec<_> = panel_points(report, mali)
@@ -370,6 +396,26 @@ fn draw_chart(report: &Value, path: &Path) -> Result<(), Box<dyn std::error::Err
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_governors_front_is_the_measured_tables() {
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/results");
+        let report: Value = serde_json::from_str(
+            &std::fs::read_to_string(root.join("shading.json")).expect("shading.json"),
+        )
+        .expect("JSON");
+        let file = std::fs::read_to_string(root.join("governor-front.txt")).expect("front file");
+        assert_eq!(
+            file,
+            front_file(&report),
+            "rerun `dermis bench shading --out docs/results`"
+        );
+        let names: Vec<String> = dermis_core::governor::front()
+            .iter()
+            .map(|m| m.name().to_string())
+            .collect();
+        assert_eq!(names, front_models(&report));
+    }
 
     #[test]
     fn front_of_points() {

@@ -145,7 +145,9 @@ pub struct ShadowMap {
     /// Rendered by the shadow pass.
     target: wgpu::TextureView,
     skinned: wgpu::RenderPipeline,
-    occluder_pipeline: wgpu::RenderPipeline,
+    /// Built with the first occluder (measurement scenes only; the game has none).
+    occluder_pipeline: Option<wgpu::RenderPipeline>,
+    caster_layout: wgpu::BindGroupLayout,
     caster_buffer: wgpu::Buffer,
     caster_group: wgpu::BindGroup,
     occluder: Option<Occluder>,
@@ -242,22 +244,6 @@ impl ShadowMap {
             "vs_skinned",
             &[Some(vertex_layout())],
         );
-        let occluder_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("shadow occluder"),
-            bind_group_layouts: &[Some(&caster_layout)],
-            immediate_size: 0,
-        });
-        let occluder_pipeline = depth_only(
-            device,
-            &occluder_layout,
-            &module,
-            "vs_occluder",
-            &[Some(wgpu::VertexBufferLayout {
-                array_stride: 12,
-                step_mode: wgpu::VertexStepMode::Vertex,
-                attributes: &wgpu::vertex_attr_array![0 => Float32x3],
-            })],
-        );
         let caster_buffer = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("shadow caster"),
             size: 64,
@@ -277,7 +263,8 @@ impl ShadowMap {
             view,
             target,
             skinned,
-            occluder_pipeline,
+            occluder_pipeline: None,
+            caster_layout,
             caster_buffer,
             caster_group,
             occluder: None,
@@ -287,6 +274,28 @@ impl ShadowMap {
 
     /// Sets (or with an empty list removes) the shadow-only occluder: world-space triangles.
     pub fn set_occluder(&mut self, device: &wgpu::Device, triangles: &[[f32; 3]]) {
+        if !triangles.is_empty() && self.occluder_pipeline.is_none() {
+            let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some("shadow occluder"),
+                bind_group_layouts: &[Some(&self.caster_layout)],
+                immediate_size: 0,
+            });
+            let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some("shadow occluder"),
+                source: wgpu::ShaderSource::Wgsl(caster_shader_source().into()),
+            });
+            self.occluder_pipeline = Some(depth_only(
+                device,
+                &layout,
+                &module,
+                "vs_occluder",
+                &[Some(wgpu::VertexBufferLayout {
+                    array_stride: 12,
+                    step_mode: wgpu::VertexStepMode::Vertex,
+                    attributes: &wgpu::vertex_attr_array![0 => Float32x3],
+                })],
+            ));
+        }
         self.occluder = (!triangles.is_empty()).then(|| Occluder {
             vertices: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("shadow occluder"),
@@ -339,8 +348,8 @@ impl ShadowMap {
             pass.set_pipeline(&self.skinned);
             draws += character.draw(&mut pass);
         }
-        if let Some(o) = &self.occluder {
-            pass.set_pipeline(&self.occluder_pipeline);
+        if let (Some(o), Some(pipeline)) = (&self.occluder, &self.occluder_pipeline) {
+            pass.set_pipeline(pipeline);
             pass.set_vertex_buffer(0, o.vertices.slice(..));
             pass.draw(0..o.count, 0..1);
             draws += 1;
