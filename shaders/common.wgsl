@@ -40,8 +40,13 @@ struct Surface {
     l: vec3<f32>,
     // Distance to the light (m), never below 1 mm.
     light_dist: f32,
-    // Light intensity × colour (before distance falloff).
+    // Light intensity × colour (before distance falloff), times `visibility`.
     light: vec3<f32>,
+    // The key light's shadow test at this point (1: lit), already in `light`.
+    visibility: f32,
+    // Where it was tested in the shadow map: uv, depth, and w 1 inside the map (0: outside,
+    // or no map this frame).
+    shadow_coord: vec4<f32>,
     // Base colour (texture × factor), linear.
     albedo: vec3<f32>,
     // Material thickness through this point (m).
@@ -60,45 +65,42 @@ fn safe_normalize(v: vec3<f32>, fallback: vec3<f32>) -> vec3<f32> {
     return v * inverseSqrt(len2);
 }
 
-// The fraction of the key light that reaches world point `p` (1: lit, 0: in shadow), from
-// the shadow map: four bilinear depth comparisons half a texel apart (a 2-texel tent), the
-// point moved `offset` (unit vector) by the normal offset first so a lit surface does not
-// shadow itself. Outside the map's frustum nothing casts: lit.
-fn light_visible(p: vec3<f32>, offset: vec3<f32>) -> f32 {
-    if (frame.shadow.x < 0.5) {
-        return 1.0;
-    }
+// World point `p` moved `offset` (a vector of at most unit length) times the normal offset,
+// in the shadow map: uv, depth (beyond the far plane: at it), w 1 inside the map's frustum
+// (0 outside, or when no map was drawn this frame).
+fn shadow_coord(p: vec3<f32>, offset: vec3<f32>) -> vec4<f32> {
     let q = frame.shadow_view_proj * vec4<f32>(p + offset * frame.shadow.y, 1.0);
-    if (q.w <= 0.0) {
-        return 1.0;
-    }
-    let ndc = q.xyz / q.w;
+    let ndc = q.xyz / max(q.w, 1e-20);
     let uv = vec2<f32>(0.5 + 0.5 * ndc.x, 0.5 - 0.5 * ndc.y);
-    if (any(uv < vec2<f32>(0.0)) || any(uv > vec2<f32>(1.0))) {
-        return 1.0;
-    }
-    // Beyond the far plane (a receiver behind every caster): compared at the far plane.
-    let depth = min(ndc.z, 1.0) - frame.shadow.z;
-    let h = 0.5 * frame.shadow.w;
-    var lit = 0.0;
-    lit += textureSampleCompareLevel(shadow_map, shadow_sampler, uv + vec2<f32>(-h, -h), depth);
-    lit += textureSampleCompareLevel(shadow_map, shadow_sampler, uv + vec2<f32>(h, -h), depth);
-    lit += textureSampleCompareLevel(shadow_map, shadow_sampler, uv + vec2<f32>(-h, h), depth);
-    lit += textureSampleCompareLevel(shadow_map, shadow_sampler, uv + vec2<f32>(h, h), depth);
-    return 0.25 * lit;
+    let inside = frame.shadow.x > 0.5 && q.w > 0.0 && all(uv >= vec2<f32>(0.0))
+        && all(uv <= vec2<f32>(1.0));
+    return vec4<f32>(uv, min(ndc.z, 1.0), select(0.0, 1.0, inside));
 }
 
-// Where light that leaves at a surface point entered, for the shadow test: a point lit from
-// the front is tested where it is (moved off the surface along n); one lit from behind
-// (translucency, the wrap past the terminator) received its light where the ray toward the
-// light leaves the material, the thickness / |n·l| further along l.
-fn light_visible_at(pos: vec3<f32>, n: vec3<f32>, l: vec3<f32>, thickness: f32) -> f32 {
-    let nl = dot(n, l);
-    if (nl >= 0.0) {
-        // The offset grows as the light grazes (sin of its angle to n), where acne would.
-        return light_visible(pos, n * sqrt(max(1.0 - nl * nl, 0.0)));
+// The fraction of the key light that reaches a point at shadow-map coordinate `c` (1: lit,
+// 0: in shadow): one bilinear depth comparison (2×2 texels). Outside the map nothing casts.
+fn light_visible_coord(c: vec4<f32>) -> f32 {
+    if (c.w < 0.5) {
+        return 1.0;
     }
-    return light_visible(pos + l * (thickness / max(-nl, 0.05)), l);
+    return textureSampleCompareLevel(shadow_map, shadow_sampler, c.xy, c.z - frame.shadow.z);
+}
+
+// The key light's visibility at `p`, moved off its surface by `offset` (see shadow_coord).
+fn light_visible(p: vec3<f32>, offset: vec3<f32>) -> f32 {
+    return light_visible_coord(shadow_coord(p, offset));
+}
+
+// Where light that leaves at a surface point entered, for the shadow test, in the shadow map:
+// a point lit from the front is tested where it is (moved off the surface along n, more as the
+// light grazes); one lit from behind (translucency, the wrap past the terminator) received its
+// light where the ray toward the light leaves the material, thickness / |n·l| further along l.
+fn entry_shadow_coord(pos: vec3<f32>, n: vec3<f32>, l: vec3<f32>, thickness: f32) -> vec4<f32> {
+    let nl = dot(n, l);
+    let behind = nl < 0.0;
+    let p = select(pos, pos + l * (thickness / max(-nl, 0.05)), behind);
+    let offset = select(n * sqrt(max(1.0 - nl * nl, 0.0)), l, behind);
+    return shadow_coord(p, offset);
 }
 
 fn make_surface(pos: vec3<f32>, normal: vec3<f32>, tangent: vec4<f32>, albedo: vec3<f32>,
@@ -121,8 +123,9 @@ fn make_surface(pos: vec3<f32>, normal: vec3<f32>, tangent: vec4<f32>, albedo: v
     s.l = safe_normalize(to_light, s.n);
     s.albedo = albedo;
     s.thickness = max(thickness, 0.0);
-    s.light = frame.light_pos.w * frame.light_color.rgb
-        * light_visible_at(pos, s.n, s.l, s.thickness);
+    s.shadow_coord = entry_shadow_coord(pos, s.n, s.l, s.thickness);
+    s.visibility = light_visible_coord(s.shadow_coord);
+    s.light = frame.light_pos.w * frame.light_color.rgb * s.visibility;
     s.curvature_radius = FLAT_RADIUS_M;
     return s;
 }

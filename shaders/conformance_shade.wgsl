@@ -39,6 +39,8 @@ fn conformance_shade(@builtin(global_invocation_id) id: vec3<u32>) {
     s.l = x.l.xyz;
     s.light_dist = max(x.light.w, 1e-3);
     s.light = x.light.rgb;
+    s.visibility = 1.0;
+    s.shadow_coord = vec4<f32>(0.0);
     s.albedo = x.albedo.rgb;
     s.thickness = max(x.albedo.w, 0.0);
     conformance_out[2u * i] = vec4<f32>(shade(s), 0.0);

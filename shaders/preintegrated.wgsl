@@ -28,34 +28,27 @@ fn lut_row(u: f32, row: f32) -> vec4<f32> {
 // The key light's visibility per channel. `v` is the shadow map's test at this point; near the
 // edge of a caster's shadow it becomes the edge-spread function of the material's kernel at the
 // point's signed distance from that edge (the penumbra map gives the nearest edge of a caster
-// in front of the point; within the test's own two-texel tent its fraction places the edge
-// more finely): light bleeds into the shadow as far as the material carries it, red furthest.
+// in front of the point; within the test's one-texel ramp its fraction places the edge more
+// finely): light bleeds into the shadow as far as the material carries it, red furthest.
 fn penumbra(s: Surface, v: f32) -> vec3<f32> {
     let nl = dot(s.n, s.l);
-    if (frame.penumbra.x < 0.5 || nl <= 0.0) {
-        return vec3<f32>(v);
-    }
-    let q = frame.shadow_view_proj * vec4<f32>(s.pos, 1.0);
-    if (q.w <= 0.0) {
-        return vec3<f32>(v);
-    }
-    let ndc = q.xyz / q.w;
-    let uv = vec2<f32>(0.5 + 0.5 * ndc.x, 0.5 - 0.5 * ndc.y);
-    if (any(uv < vec2<f32>(0.0)) || any(uv > vec2<f32>(1.0))) {
+    let c = s.shadow_coord;
+    if (frame.penumbra.x < 0.5 || nl <= 0.0 || c.w < 0.5) {
         return vec3<f32>(v);
     }
     let grid = frame.penumbra.y;
-    let cell = vec2<i32>(clamp(uv * grid, vec2<f32>(0.0), vec2<f32>(grid - 1.0)));
+    let cell = vec2<i32>(min(c.xy * grid, vec2<f32>(grid - 1.0)));
     let seed = textureLoad(penumbra_map, cell, 0);
-    if (seed.w < 0.5 || seed.z >= min(ndc.z, 1.0) - frame.penumbra.w) {
+    if (seed.w < 0.5 || seed.z >= c.z - frame.penumbra.w) {
         return vec3<f32>(v);
     }
     // Across the light's image plane, stretched onto the surface by the incidence.
     let to_mm = frame.penumbra.z * 1000.0 / max(nl, 0.25);
     let texel_mm = frame.shadow.w * to_mm;
-    var d = select(-1.0, 1.0, v >= 0.5) * max(length(seed.xy - uv) * to_mm, texel_mm);
+    var d = select(-1.0, 1.0, v >= 0.5) * max(length(seed.xy - c.xy) * to_mm, 0.5 * texel_mm);
     if (v > 0.0 && v < 1.0) {
-        d = (2.0 * v - 1.0) * texel_mm;
+        // The bilinear test ramps over one texel.
+        d = (v - 0.5) * texel_mm;
     }
     let t = sign(d) * sqrt(min(abs(d) / PENUMBRA_SPAN_MM, 1.0));
     return exp2(lut_row(0.5 * (t + 1.0), PENUMBRA_ROW).rgb);
@@ -91,11 +84,11 @@ fn shade(s: Surface) -> vec3<f32> {
     let ball = lut_row(log2(max(2.0 * rho_mm * back, 0.25) / 0.25) / 9.0, CURVATURE_ROWS + 1.0).rgb;
     let through = back * entry * max(slab - ball, vec3<f32>(0.0));
     let ambient = PI * frame.ambient.rgb * model.albedo;
-    // The light before its shadow test (s.light carries the hard test `v`), so the response
-    // can take the penumbra's per-channel visibility instead; translucency keeps `v`, tested
-    // where it enters on the far side.
-    let seen = light_visible_at(s.pos, s.n, s.l, s.thickness);
+    // The light before its shadow test (s.light carries the hard test), so the response
+    // can take the penumbra's per-channel visibility instead; translucency keeps the hard
+    // test, made where it enters on the far side.
     let full = select(s.light, frame.light_pos.w * frame.light_color.rgb, frame.shadow.x > 0.5);
     let e_full = full / (s.light_dist * s.light_dist);
-    return exit * (ambient + e_full * response * penumbra(s, seen) + irradiance(s) * through);
+    let lit = penumbra(s, s.visibility);
+    return exit * (ambient + e_full * response * lit + irradiance(s) * through);
 }

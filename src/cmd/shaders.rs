@@ -275,13 +275,19 @@ pub fn mali_cost(
     Some((stat, weighted))
 }
 
-/// Fragment cycles of one frame's penumbra passes on `gpu`: the seed pass and one jump pass
-/// per halving over the game's grid (a quarter of the 1024² shadow map per side).
+/// Fragment cycles of one frame's penumbra passes on `gpu`: the seed pass and the jump
+/// passes over the game's grid, for the game's key light and character (the frustum the
+/// renderer fits, so the same number of jumps).
 pub fn penumbra_grid_cycles(mali: &Value, gpu: &str) -> Option<f64> {
+    use dermis_core::render::{jump_steps, key_light, ShadowView, CHARACTER, PENUMBRA_BLOCK};
     let bound = |s: &str| mali["shaders"][s][gpu]["frag"]["bound"].as_f64();
-    let grid = (dermis_core::render::SHADOW_MAP_SIZE / 4) as f64;
-    let jumps = grid.log2().ceil();
-    Some(grid * grid * (bound("penumbra_seed")? + jumps * bound("penumbra_jump")?))
+    let size = dermis_core::render::SHADOW_MAP_SIZE;
+    let (centre, radius) = CHARACTER.sphere_at(glam::Vec3::ZERO);
+    let view = ShadowView::fit(key_light(glam::Vec3::ZERO).position, centre, radius, size);
+    let grid = size / PENUMBRA_BLOCK;
+    let jumps = jump_steps(grid, view.texel_m * size as f32).len() as f64;
+    let texels = (grid * grid) as f64;
+    Some(texels * (bound("penumbra_seed")? + jumps * bound("penumbra_jump")?))
 }
 
 pub fn run(args: ShadersArgs) -> Result<(), String> {

@@ -35,6 +35,7 @@ pub use driver::{Allocs, Clock, FrameDriver, FrameOutput, FrameTimes, FrameWork,
 pub use frame::{FrameUniform, Light};
 pub use gpu::{Gpu, GpuError};
 pub use offscreen::{f16_to_f32, Offscreen, RgbaImage, OFFSCREEN_FORMAT};
+pub use penumbra::{jump_steps, BLOCK as PENUMBRA_BLOCK};
 pub use pipelines::{build_shader_source, CharacterPipelines, PipelineSet};
 pub use props::{PropInstance, PropKind};
 pub use readback::{read_buffer, read_mapped};

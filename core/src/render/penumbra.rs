@@ -7,14 +7,17 @@
 //! material carries it — also far beyond what a few filter taps reach.
 //!
 //! Built only when the renderer's pipelines reach such a model; run only in frames that draw
-//! one with a shadow map. Cost: one seed pass (nine gathers per grid texel) and log2(grid)
-//! jump passes (nine loads each) over the grid — 256² for the game's 1024² map, independent
-//! of the screen's size.
+//! one with a shadow map. Cost: one seed pass (25 gathers per grid texel) and as many jump
+//! passes (nine loads each) as the material's reach needs — distances beyond
+//! [`REACH_MM`] are never read — over the grid: 128² for the game's 1024² map (4 jump
+//! passes), independent of the screen's size.
 
 use super::shadow_map::ShadowMap;
 
 /// Shadow-map texels per grid texel (per side).
-pub const BLOCK: u32 = 4;
+pub const BLOCK: u32 = 8;
+/// How far from an edge a distance is needed (mm): the edge-spread table's span.
+pub const REACH_MM: f32 = crate::shading::edge_spread::SPAN_MM as f32;
 /// The grid's texture format: seed uv, depth, valid.
 pub const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 /// The depth step that makes an edge, in metres along the light.
@@ -22,11 +25,9 @@ pub const EDGE_GAP_M: f32 = 0.01;
 /// Uniform slot stride (the minimum uniform offset alignment).
 const SLOT: u64 = 256;
 
+/// A pass's bind groups: reading target 0, reading target 1.
 struct Pass {
-    group: wgpu::BindGroup,
-    /// Writes into the target of this index.
-    target: usize,
-    seed: bool,
+    groups: [wgpu::BindGroup; 2],
 }
 
 pub struct Penumbra {
@@ -38,7 +39,10 @@ pub struct Penumbra {
     seed: wgpu::RenderPipeline,
     jump: wgpu::RenderPipeline,
     uniforms: wgpu::Buffer,
+    /// The seed pass, then one per possible jump.
     passes: Vec<Pass>,
+    /// Jump passes this frame (set by `prepare`).
+    jumps: std::cell::Cell<usize>,
 }
 
 /// The bind group layout of both passes.
@@ -93,6 +97,17 @@ pub fn steps(size: u32) -> Vec<u32> {
         s /= 2;
     }
     out
+}
+
+/// The jump steps for a grid of `size` texels over a map `map_width_m` wide: the halvings
+/// from the first power of two that reaches [`REACH_MM`] down to 1.
+pub fn jump_steps(size: u32, map_width_m: f32) -> Vec<u32> {
+    let texel_mm = map_width_m * 1000.0 / size.max(1) as f32;
+    let reach = (REACH_MM / texel_mm.max(1e-6)).ceil().clamp(1.0, 1e6) as u32;
+    steps(size)
+        .into_iter()
+        .filter(|&s| s <= reach.next_power_of_two())
+        .collect()
 }
 
 /// A grid texture (render target and bound for loads).
@@ -201,39 +216,36 @@ impl Penumbra {
                 ],
             })
         };
-        // Seed into A; jump passes alternate A → B → A …
-        let mut passes = vec![Pass {
-            group: group(0, &targets[1]),
-            target: 0,
-            seed: true,
-        }];
-        for k in 0..steps.len() {
-            let from = k % 2;
-            passes.push(Pass {
-                group: group(k as u64 + 1, &targets[from]),
-                target: 1 - from,
-                seed: false,
-            });
-        }
-        let last = passes.last().map_or(0, |p| p.target);
+        let passes = (0..=steps.len())
+            .map(|k| Pass {
+                groups: [group(k as u64, &targets[0]), group(k as u64, &targets[1])],
+            })
+            .collect();
         Self {
             size,
-            result: targets[last].clone(),
+            result: targets[0].clone(),
             targets,
             seed: pipeline("fs_seed"),
             jump: pipeline("fs_jump"),
             uniforms,
             passes,
+            jumps: std::cell::Cell::new(steps.len()),
         }
     }
 
     /// Writes the passes' constants for this frame: `gap` is [`EDGE_GAP_M`] in the map's
-    /// depth units.
-    pub fn prepare(&self, queue: &wgpu::Queue, gap: f32) {
+    /// depth units, `map_width_m` the shadow map's width at the casters. The jumps start at
+    /// the step that reaches [`REACH_MM`].
+    pub fn prepare(&self, queue: &wgpu::Queue, gap: f32, map_width_m: f32) {
         let size = self.size as f32;
+        let steps = jump_steps(self.size, map_width_m);
+        self.jumps.set(steps.len());
         let mut data = vec![0u8; self.passes.len() * SLOT as usize];
-        let steps = steps(self.size);
-        for (k, chunk) in data.chunks_mut(SLOT as usize).enumerate() {
+        for (k, chunk) in data
+            .chunks_mut(SLOT as usize)
+            .enumerate()
+            .take(steps.len() + 1)
+        {
             let step = if k == 0 { 0.0 } else { steps[k - 1] as f32 };
             let v = [step, size, BLOCK as f32, gap];
             chunk[..16].copy_from_slice(bytemuck::cast_slice(&v));
@@ -241,17 +253,24 @@ impl Penumbra {
         queue.write_buffer(&self.uniforms, 0, &data);
     }
 
-    /// Records the seed pass and the jump passes.
+    /// Records the seed pass and this frame's jump passes; the last writes target 0 (the one
+    /// receivers bind), so the seed goes where the parity puts it.
     pub fn encode(&self, encoder: &mut wgpu::CommandEncoder) {
-        for p in &self.passes {
+        let jumps = self.jumps.get();
+        let mut target = jumps % 2;
+        for (k, p) in self.passes.iter().take(jumps + 1).enumerate() {
+            let seed = k == 0;
+            if !seed {
+                target = 1 - target;
+            }
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some(if p.seed {
+                label: Some(if seed {
                     "penumbra seed"
                 } else {
                     "penumbra jump"
                 }),
                 color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: &self.targets[p.target],
+                    view: &self.targets[target],
                     depth_slice: None,
                     resolve_target: None,
                     ops: wgpu::Operations {
@@ -264,8 +283,9 @@ impl Penumbra {
                 occlusion_query_set: None,
                 multiview_mask: None,
             });
-            pass.set_pipeline(if p.seed { &self.seed } else { &self.jump });
-            pass.set_bind_group(0, &p.group, &[]);
+            pass.set_pipeline(if seed { &self.seed } else { &self.jump });
+            // Jumps read the other target; the seed reads none (bound: the other one).
+            pass.set_bind_group(0, &p.groups[1 - target], &[]);
             pass.draw(0..3, 0..1);
         }
     }
@@ -280,5 +300,10 @@ mod tests {
         assert_eq!(steps(256), vec![128, 64, 32, 16, 8, 4, 2, 1]);
         assert_eq!(steps(1), Vec::<u32>::new());
         assert_eq!(steps(5), vec![4, 2, 1]);
+        // The game's grid: 128 texels over ~2.1 m (16.4 mm each) need 8 texels of reach.
+        assert_eq!(jump_steps(128, 2.1), vec![8, 4, 2, 1]);
+        assert_eq!(jump_steps(128, 1.9), vec![16, 8, 4, 2, 1]);
+        // A fine map reaches as far as its grid allows.
+        assert_eq!(jump_steps(16, 0.01), steps(16));
     }
 }

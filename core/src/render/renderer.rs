@@ -362,7 +362,8 @@ impl Renderer {
         }
         let grid = self.penumbra.as_ref().map_or(0, |p| p.size);
         if let Some(p) = &self.penumbra {
-            p.prepare(queue, shadow.penumbra_params(grid)[3]);
+            let params = shadow.penumbra_params(grid);
+            p.prepare(queue, params[3], params[2]);
         }
         self.shadow_drawn.set(shadow.drawn);
         let raw = matches!(
