@@ -6,7 +6,6 @@
 //! reach such a model has no such pass, pipeline or target.
 
 mod character;
-pub mod conformance;
 mod counters;
 mod driver;
 mod frame;
