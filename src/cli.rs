@@ -88,7 +88,7 @@ pub enum Command {
     Sss(cmd::sss::SssArgs),
     /// Generate the path-traced reference data set (tools/reference/<material>.json).
     Reference(cmd::reference::ReferenceArgs),
-    /// Bake the pre-integrated skin LUTs the core ships (assets/sss/<material>-eta<η>.lut).
+    /// Bake the spatial models' tables and LUTs the core ships (assets/sss/<material>-eta<η>.*).
     Lut(cmd::lut::LutArgs),
     /// Radial exitance profile M(r) of a flat medium under a point light, per shading model.
     Profile(cmd::profile::ProfileArgs),

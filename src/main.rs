@@ -45,6 +45,9 @@ fn main() -> ExitCode {
             return ExitCode::from(2);
         }
     };
+    // Materials no shipped table covers (the measurement commands' `--eta`, `--g`) are baked
+    // by the Monte Carlo; the game's presets are shipped.
+    dermis_measure::bake::install();
     if cli.is_headless_gpu() {
         quiet_wayland_probe();
     }

@@ -4,13 +4,13 @@
 
 use std::process::Command;
 
-use dermis_core::reference::{self, metric, ReferenceSet, Scene};
+use dermis_measure::ground_truth::{self, metric, ReferenceSet, Scene};
 use serde_json::Value;
 
 #[test]
 fn profile_of_tabulated_and_ward_against_the_point_light_reference() {
-    let m = reference::acceptance_materials()[0];
-    let set = ReferenceSet::load(&reference::file_for(&reference::source_dir(), m.name))
+    let m = ground_truth::acceptance_materials()[0];
+    let set = ReferenceSet::load(&ground_truth::file_for(&ground_truth::source_dir(), m.name))
         .unwrap_or_else(|e| panic!("{e}"));
     let entry = set
         .entry(&Scene::PointLight { h_mm: 5.0 })

@@ -1,14 +1,15 @@
 //! GPU conformance: the renderer's WGSL shading functions, run by the compute harness
-//! (`dermis_core::render::conformance`) on the real driver (lavapipe in CI), against the f64
+//! (`dermis_measure::conformance::harness`) on the real driver (lavapipe in CI), against the f64
 //! references beside each model, over the renderer's materials and a grid of angles, light
 //! distances and thicknesses. No skip: without an adapter the tests fail.
 
-use dermis_core::render::conformance::{Harness, Item};
 use dermis_core::render::Gpu;
-use dermis_core::shading::conformance::{self, NdFunction, Precision, F32_ND, F32_SHADE};
 use dermis_core::shading::material::{Material, SKIN1, WHITE_COAT};
 use dermis_core::shading::pixel::Pixel;
-use dermis_core::shading::{bake, ShadingModel};
+use dermis_core::shading::ShadingModel;
+use dermis_measure::bake;
+use dermis_measure::conformance::harness::{Harness, Item};
+use dermis_measure::conformance::{self, NdFunction, Precision, F32_ND, F32_SHADE};
 use glam::DVec3;
 
 fn gpu() -> Gpu {
@@ -96,7 +97,7 @@ fn every_model_matches_its_f64_reference_in_f32() {
     {
         let params: Vec<_> = mats
             .iter()
-            .map(|m| model.params_with(m, bake::QUICK_BUDGET))
+            .map(|m| model.params_with(m, &bake::quick(m)))
             .collect();
         let items: Vec<Item> = (0..mats.len())
             .flat_map(|p| {

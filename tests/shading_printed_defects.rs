@@ -8,11 +8,11 @@
 //! * oss (eq. 5 as printed): f_d < 0 beyond ~1.4 / 2.0 / 2.7 mm (B / G / R) for skin1 at
 //!   η = 1.4 (the renderer clamps the radiance at 0, which hides it in images).
 
-use dermis_core::render::conformance::{Harness, Item};
 use dermis_core::render::Gpu;
 use dermis_core::shading::material::{Material, SKIN1};
 use dermis_core::shading::pixel::Pixel;
 use dermis_core::shading::{ModelParams, ShadingModel};
+use dermis_measure::conformance::harness::{Harness, Item};
 use glam::DVec3;
 
 fn gpu() -> Gpu {

@@ -10,14 +10,15 @@
 //! inside f16's range (`NdFunction::f16_domain`), within `F16_ND`; it runs where the adapter
 //! has SHADER_F16 (lavapipe does) and says so; with CI=true a missing f16 is a failure.
 
-use dermis_core::render::conformance::{Harness, Item};
 use dermis_core::render::Gpu;
-use dermis_core::shading::conformance::{
-    self, round_f16, NdFunction, Precision, F16_ND, F32_ND, F32_SHADE,
-};
 use dermis_core::shading::material::Material;
 use dermis_core::shading::pixel::Pixel;
-use dermis_core::shading::{bake, ShadingModel};
+use dermis_core::shading::ShadingModel;
+use dermis_measure::bake;
+use dermis_measure::conformance::harness::{Harness, Item};
+use dermis_measure::conformance::{
+    self, round_f16, NdFunction, Precision, F16_ND, F32_ND, F32_SHADE,
+};
 use glam::DVec3;
 
 fn gpu() -> Gpu {
@@ -147,7 +148,7 @@ fn every_model_in_f32_over_the_extremes() {
     {
         let params: Vec<_> = mats
             .iter()
-            .map(|m| model.params_with(m, bake::QUICK_BUDGET))
+            .map(|m| model.params_with(m, &bake::quick(m)))
             .collect();
         let items: Vec<Item> = (0..mats.len())
             .flat_map(|p| {

@@ -2,19 +2,19 @@
 //! runner's shadow falls on the floor where the light puts it, the runner shadows itself, and
 //! a shadow only ever darkens (the same uploaded frame rendered with the character casting and
 //! with nothing casting). Then the pre-integrated tier's penumbra against the path-traced
-//! shadow edges, which the probe casts through this same map with a real occluder.
+//! shadow edges, which the measurement scenes cast through this same map with a real occluder.
 
 mod common;
 
 use common::Rig;
 use dermis_core::camera::look_at;
 use dermis_core::governor::GovernorConfig;
-use dermis_core::probe::Probe;
-use dermis_core::reference::{self, metric, ReferenceSet, Scene};
 use dermis_core::render::{
     key_light, DrawSet, FrameView, Gpu, RgbaImage, EXPOSURE, SHADOW_MAP_SIZE,
 };
 use dermis_core::shading::ShadingModel;
+use dermis_measure::ground_truth::{self as reference, metric, ReferenceSet, Scene};
+use dermis_measure::scenes::SceneRenderer;
 use glam::{Mat4, Vec3, Vec4Swizzles};
 
 const W: u32 = 320;
@@ -150,13 +150,13 @@ fn skin1_set() -> (dermis_core::shading::Material, ReferenceSet) {
 #[test]
 fn the_preintegrated_penumbra_bleeds_like_the_path_traced_shadow_edge() {
     let gpu = Gpu::headless().unwrap_or_else(|e| panic!("{e}"));
-    let mut probe = Probe::new(&gpu);
+    let mut scenes = SceneRenderer::new(&gpu);
     let (m, set) = skin1_set();
     for theta in [0.0, 45.0] {
         let entry = set
             .entry(&Scene::ShadowEdge { theta_deg: theta })
             .expect("reference has the edge");
-        let pre = probe
+        let pre = scenes
             .render(
                 &gpu,
                 ShadingModel::Preintegrated,
@@ -170,7 +170,7 @@ fn the_preintegrated_penumbra_bleeds_like_the_path_traced_shadow_edge() {
         assert!(pre.iter().flatten().all(|v| v.is_finite() && *v >= 0.0));
         let s = metric::score(&pre, entry);
         let ward = metric::score(
-            &probe
+            &scenes
                 .render(&gpu, ShadingModel::Ward, &m, &entry.scene, &entry.edges)
                 .unwrap(),
             entry,

@@ -2,26 +2,29 @@
 //! Monte Carlo references (`tools/reference/`), with tolerances set from the references'
 //! own noise, and the rule that the screen-space pass exists only where a model calls for it.
 
-use dermis_core::probe::Probe;
-use dermis_core::reference::{self, metric, ReferenceSet, Scene};
 use dermis_core::render::{Gpu, LiveObjects, PipelineSet, Renderer};
 use dermis_core::shading::{Material, ShadingModel};
+use dermis_measure::ground_truth::{self, metric, ReferenceSet, Scene};
+use dermis_measure::scenes::SceneRenderer;
 
 fn gpu() -> Gpu {
     Gpu::headless().unwrap_or_else(|e| panic!("{e}"))
 }
 
 fn set(m: &Material) -> ReferenceSet {
-    ReferenceSet::load(&reference::file_for(&reference::default_dir(), m.name))
-        .unwrap_or_else(|e| panic!("{e}"))
+    ReferenceSet::load(&ground_truth::file_for(
+        &ground_truth::default_dir(),
+        m.name,
+    ))
+    .unwrap_or_else(|e| panic!("{e}"))
 }
 
 fn skin1() -> Material {
-    reference::acceptance_materials()[0]
+    ground_truth::acceptance_materials()[0]
 }
 
 /// The error a model may have on top of the reference's own noise.
-fn tolerance(entry: &reference::Entry, model_error: f64) -> f64 {
+fn tolerance(entry: &ground_truth::Entry, model_error: f64) -> f64 {
     let noise = metric::score(&entry.values, entry).ref_rel_se_all;
     model_error + 3.0 * noise
 }
@@ -29,7 +32,7 @@ fn tolerance(entry: &reference::Entry, model_error: f64) -> f64 {
 #[test]
 fn the_measured_profile_matches_path_traced_point_lights() {
     let gpu = gpu();
-    let mut probe = Probe::new(&gpu);
+    let mut probe = SceneRenderer::new(&gpu);
     let m = skin1();
     let set = set(&m);
     for h in [2.0, 5.0, 20.0] {
@@ -71,7 +74,7 @@ fn the_measured_profile_matches_path_traced_point_lights() {
 #[test]
 fn translucency_matches_path_traced_backlit_slabs() {
     let gpu = gpu();
-    let mut probe = Probe::new(&gpu);
+    let mut probe = SceneRenderer::new(&gpu);
     let m = skin1();
     let set = set(&m);
     for d in [0.5, 1.0, 2.0] {
@@ -103,9 +106,9 @@ fn the_preintegrated_lut_matches_path_traced_spheres_and_flat_ground() {
     // the mesh's derivatives) the spheres must score within the acceptance bound of the
     // spatial-transport issue (best model ≤ 0.10 on spheres), each sphere within 0.15.
     let gpu = gpu();
-    let mut probe = Probe::new(&gpu);
+    let mut probe = SceneRenderer::new(&gpu);
     let (mut sum, mut noise, mut n) = (0.0, 0.0, 0.0);
-    for m in reference::acceptance_materials() {
+    for m in ground_truth::acceptance_materials() {
         let set = set(&m);
         for entry in set
             .entries

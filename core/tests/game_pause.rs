@@ -23,7 +23,7 @@ fn viewport() -> Viewport {
 }
 
 fn session(autoplay: bool) -> (Session, Model) {
-    let model = dermis_core::probe::plane_model(0.5, 0.01);
+    let model = dermis_core::asset::shapes::plane_model(0.5, 0.01);
     let s = Session::new(&model, 3, None, autoplay);
     (s, model)
 }

@@ -41,7 +41,7 @@ static A: Counting = Counting;
 const FRAME: f32 = 1.0 / 60.0;
 
 fn session() -> (Session, Model) {
-    let model = dermis_core::probe::plane_model(0.5, 0.01);
+    let model = dermis_core::asset::shapes::plane_model(0.5, 0.01);
     let s = Session::new(&model, 3, None, false);
     (s, model)
 }

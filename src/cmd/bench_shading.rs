@@ -2,8 +2,8 @@
 //! Pareto chart).
 //!
 //! - **Accuracy**: every scene of the path-traced reference set (`tools/reference/`, both
-//!   acceptance materials) rendered through the real renderer (`dermis_core::probe`) and
-//!   scored with `reference::metric` (mean |ln(model/MC)| over the bins above the MC's noise
+//!   acceptance materials) rendered through the real renderer (`dermis_measure::scenes`) and
+//!   scored with `ground_truth::metric` (mean |ln(model/MC)| over the bins above the MC's noise
 //!   floor; the integrated error; the MC's own relative SE).
 //! - **Cost (a)**: GPU time of a full-screen pass on this adapter (a flat skin patch filling a
 //!   1280x720 target, point light, close-up scale), both passes for screen-space models,
@@ -16,13 +16,14 @@ use std::path::PathBuf;
 
 use crate::cmd::progress::Progress;
 use dermis_core::anim::Pose;
-use dermis_core::probe::{self, Probe};
-use dermis_core::reference::metric::score;
-use dermis_core::reference::{self, ReferenceSet};
+use dermis_core::asset::shapes::plane_model;
 use dermis_core::render::{
     DrawSet, FrameView, Gpu, Light, Offscreen, PassTimer, Renderer, OFFSCREEN_FORMAT,
 };
 use dermis_core::shading::{subsurface, Material, ShadingModel};
+use dermis_measure::ground_truth::metric::score;
+use dermis_measure::ground_truth::{self, ReferenceSet};
+use dermis_measure::scenes::SceneRenderer;
 use glam::{Mat4, Vec3};
 use serde_json::{json, Map, Value};
 
@@ -66,10 +67,10 @@ fn prepare(args: &ShadingArgs) -> Result<(References, Option<Value>), String> {
     }
     std::fs::create_dir_all(&args.out)
         .map_err(|e| format!("cannot create {}: {e}", args.out.display()))?;
-    let dir = reference::default_dir();
-    let sets = reference::acceptance_materials()
+    let dir = ground_truth::default_dir();
+    let sets = ground_truth::acceptance_materials()
         .into_iter()
-        .map(|m| ReferenceSet::load(&reference::file_for(&dir, m.name)).map(|s| (m, s)))
+        .map(|m| ReferenceSet::load(&ground_truth::file_for(&dir, m.name)).map(|s| (m, s)))
         .collect::<Result<Vec<_>, _>>()?;
     let mali = match &args.mali {
         Some(path) => Some(read_cycles(path)?),
@@ -101,7 +102,7 @@ pub fn run(args: ShadingArgs) -> Result<(), String> {
 
     // Accuracy: per model, every scene of every material.
     let mut scores: Vec<Vec<SceneScore>> = models.iter().map(|_| Vec::new()).collect();
-    let mut probe = Probe::new(&gpu);
+    let mut probe = SceneRenderer::new(&gpu);
     for (material, set) in &sets {
         for entry in &set.entries {
             for (i, &model) in models.iter().enumerate() {
@@ -181,7 +182,7 @@ impl CostScene {
         let half_w = (COST_VIEW_MM / 2000.0) as f32;
         let half_h = half_w * h as f32 / w as f32;
         // 5 mm thick (translucency terms see a thin part), reaching well past the view.
-        let model = probe::plane_model(2.0 * half_w, 0.005);
+        let model = plane_model(2.0 * half_w, 0.005);
         renderer.load_character(gpu, &model, material)?;
         let mut pose = Pose::new(&model);
         pose.update_world(&model);

@@ -1,20 +1,24 @@
-//! `dermis lut`: bakes the pre-integrated skin LUTs the core ships
-//! (`assets/sss/<material>-eta<η>.lut`, see `dermis_core::shading::preintegrated`).
+//! `dermis lut`: bakes the spatial models' tables and the pre-integrated skin LUTs the core
+//! ships (`assets/sss/<material>-eta<η>.tables` and `.lut`, see
+//! `dermis_core::shading::bake` and `dermis_core::shading::preintegrated`).
 
 use std::path::PathBuf;
 use std::time::Instant;
 
 use crate::cmd::args::check_out_dir;
-use dermis_core::reference;
-use dermis_core::shading::bake;
 use dermis_core::shading::material::PRESETS;
-use dermis_core::shading::preintegrated;
+use dermis_core::shading::{bake, preintegrated};
+use dermis_measure::bake::{measure, threads};
+use dermis_measure::{ground_truth, lut};
 
 #[derive(clap::Args, Debug)]
 pub struct LutArgs {
     /// Output directory (the shipped tables live in assets/sss).
     #[arg(long)]
     pub out: PathBuf,
+    /// Only the kernel/oblique/slab tables (seconds), not the sphere LUTs (minutes).
+    #[arg(long)]
+    pub tables_only: bool,
 }
 
 /// Bakes every preset at its own η and at the reference scenes' η (the tables are
@@ -22,23 +26,32 @@ pub struct LutArgs {
 pub fn run(args: LutArgs) -> Result<(), String> {
     // Checked before minutes of Monte Carlo, not after.
     check_out_dir(&args.out)?;
-    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let threads = threads();
     let budget = bake::DEFAULT_BUDGET;
     let materials = PRESETS
         .iter()
-        .flat_map(|m| [*m, reference::acceptance_material(m)]);
-    for m in materials {
-        let path = args.out.join(preintegrated::file_name(&m));
-        let start = Instant::now();
-        let lut =
-            preintegrated::bake_lut(&bake::measure(&m, budget, threads), &m, &budget, threads);
-        std::fs::write(&path, lut.to_bytes(&m, &budget))
+        .flat_map(|m| [*m, ground_truth::acceptance_material(m)]);
+    let write = |path: PathBuf, bytes: Vec<u8>, start: Instant| {
+        std::fs::write(&path, bytes)
             .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
         println!(
-            "{} ({:.0} s)",
+            "{} ({:.1} s)",
             path.display(),
             start.elapsed().as_secs_f64()
         );
+        Ok::<(), String>(())
+    };
+    for m in materials {
+        let start = Instant::now();
+        let tables = measure(&m, budget, threads);
+        let path = args.out.join(bake::file_name(&m));
+        write(path, tables.to_bytes(&m, &budget), start)?;
+        if !args.tables_only {
+            let start = Instant::now();
+            let lut = lut::bake_lut(&tables, &m, &budget, threads);
+            let path = args.out.join(preintegrated::file_name(&m));
+            write(path, lut.to_bytes(&m, &budget), start)?;
+        }
     }
     Ok(())
 }

@@ -5,8 +5,8 @@
 
 use std::path::Path;
 
-use dermis_core::reference::metric::ErrorStats;
-use dermis_core::reference::Scene;
+use dermis_measure::ground_truth::metric::ErrorStats;
+use dermis_measure::ground_truth::Scene;
 use serde_json::{json, Value};
 
 /// One scene's score for one model (or why it has none).

@@ -1,14 +1,14 @@
 //! `dermis profile`: the radial exitance profile M(r) of a flat medium under a point light,
-//! rendered through the real renderer (`dermis_core::probe`) for one or more shading models.
+//! rendered through the real renderer (`dermis_measure::scenes`) for one or more shading models.
 //!
 //! The scene is the reference's `point_light` scene: a flat semi-infinite medium lit by an
 //! isotropic point light of unit power at height H; the output is M(r) averaged over annuli,
 //! in mm⁻² per unit source power (the Monte Carlo's units, `tools/reference/*.json`).
 
-use dermis_core::probe::Probe;
-use dermis_core::reference::{self, Scene};
 use dermis_core::render::Gpu;
 use dermis_core::shading::{Material, ShadingModel};
+use dermis_measure::ground_truth::{self, Scene};
+use dermis_measure::scenes::SceneRenderer;
 use serde_json::{json, Map, Value};
 
 use crate::cli::{parse_material, parse_model};
@@ -146,11 +146,11 @@ fn check_edges(e: &[f64]) -> Result<(), String> {
 pub fn default_edges(h_mm: f64) -> Vec<f64> {
     let r_max = 4.0 * h_mm + 20.0;
     // The probe's view reaches 1.1 r_max + 2 mm from the centre over its pixels.
-    let pixel = 2.0 * (1.1 * r_max + 2.0) / dermis_core::probe::PIXELS as f64;
+    let pixel = 2.0 * (1.1 * r_max + 2.0) / dermis_measure::scenes::PIXELS as f64;
     let first = (0.25 * h_mm).max(2.0 * pixel);
-    reference::sinh_spaced(r_max, DEFAULT_BINS, first)
+    ground_truth::sinh_spaced(r_max, DEFAULT_BINS, first)
         .into_iter()
-        .map(reference::round_edge)
+        .map(ground_truth::round_edge)
         .collect()
 }
 
@@ -159,7 +159,7 @@ pub type Profile = (ShadingModel, Vec<[f64; 3]>);
 
 /// Renders the profile of every requested model.
 pub fn render(gpu: &Gpu, req: &Request) -> Result<Vec<Profile>, String> {
-    let mut probe = Probe::new(gpu);
+    let mut probe = SceneRenderer::new(gpu);
     let scene = Scene::PointLight { h_mm: req.h_mm };
     req.models
         .iter()

@@ -1,13 +1,13 @@
 //! `dermis reference`: generates the path-traced reference data set
-//! (`tools/reference/<material>.json`, see `dermis_core::reference`).
+//! (`tools/reference/<material>.json`, see `dermis_measure::ground_truth`).
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use crate::cmd::args::check_out_dir;
 use crate::cmd::progress::Progress;
-use dermis_core::reference::{self, ReferenceSet};
 use dermis_core::shading::material::{Material, SKIN1, WHITE_COAT};
+use dermis_measure::ground_truth::{self, ReferenceSet};
 
 #[derive(clap::Args, Debug)]
 pub struct ReferenceArgs {
@@ -41,11 +41,11 @@ pub fn default_photons(material: &Material) -> u64 {
 fn materials(name: &str) -> Result<Vec<Material>, String> {
     let all = [SKIN1, WHITE_COAT];
     if name == "all" {
-        return Ok(all.iter().map(reference::acceptance_material).collect());
+        return Ok(all.iter().map(ground_truth::acceptance_material).collect());
     }
     all.iter()
         .find(|m| m.name == name)
-        .map(|m| vec![reference::acceptance_material(m)])
+        .map(|m| vec![ground_truth::acceptance_material(m)])
         .ok_or_else(|| format!("unknown material `{name}` (known: skin1, white-coat, all)"))
 }
 
@@ -63,7 +63,7 @@ pub fn run(args: ReferenceArgs) -> Result<(), String> {
         None => std::thread::available_parallelism().map_or(1, |n| n.get()),
     };
     for m in &mats {
-        for (scene, edges) in reference::standard_scenes(m) {
+        for (scene, edges) in ground_truth::standard_scenes(m) {
             scene
                 .validate(&edges)
                 .map_err(|e| format!("{}: {e}", m.name))?;
@@ -73,7 +73,7 @@ pub fn run(args: ReferenceArgs) -> Result<(), String> {
 
     for m in &mats {
         let photons = args.photons.unwrap_or_else(|| default_photons(m));
-        let scenes = reference::standard_scenes(m);
+        let scenes = ground_truth::standard_scenes(m);
         eprintln!(
             "{}: {} scenes × 3 channels, {photons} photons each, seed {}, {threads} threads",
             m.name,
@@ -85,7 +85,7 @@ pub fn run(args: ReferenceArgs) -> Result<(), String> {
             ReferenceSet::generate(m, &scenes, photons, args.seed, threads, progress)
         });
         let secs = start.elapsed().as_secs_f64();
-        let path = reference::file_for(&args.out, m.name);
+        let path = ground_truth::file_for(&args.out, m.name);
         set.save(&path)?;
         print_summary(&set, secs, &path);
     }
@@ -127,18 +127,18 @@ fn print_summary(set: &ReferenceSet, secs: f64, path: &Path) {
     println!(
         "  (relative SE over the bins above the metric's noise floor of {} SE: those holding \
          ≥ 1 % of the channel's peak, and all of them)",
-        reference::metric::NOISE_FLOOR
+        ground_truth::metric::NOISE_FLOOR
     );
 }
 
 /// Largest relative standard error over the bins (and channels) whose value is at least 1 %
 /// of that channel's peak in the entry, and over every bin above the metric's noise floor.
-pub fn max_rel_se(e: &reference::Entry) -> (f64, f64) {
+pub fn max_rel_se(e: &ground_truth::Entry) -> (f64, f64) {
     let (mut bright, mut all): (f64, f64) = (0.0, 0.0);
     for c in 0..3 {
         let peak = e.values.iter().map(|v| v[c]).fold(0.0, f64::max);
         for (v, s) in e.values.iter().zip(&e.std_err) {
-            if v[c] > 0.0 && v[c] > reference::metric::NOISE_FLOOR * s[c] {
+            if v[c] > 0.0 && v[c] > ground_truth::metric::NOISE_FLOOR * s[c] {
                 let rel = s[c] / v[c];
                 all = all.max(rel);
                 if v[c] >= 0.01 * peak {

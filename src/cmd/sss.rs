@@ -1,7 +1,7 @@
 //! `dermis sss`: every model's total diffuse reflectance next to the Monte Carlo reference.
 
-use dermis_core::mc::{self, Medium};
 use dermis_core::shading::{prediction, Material, ShadingModel};
+use dermis_measure::mc::{self, Medium};
 use serde_json::{json, Map, Value};
 
 use crate::cli::parse_material;

@@ -28,6 +28,7 @@ pub mod limits;
 mod load;
 mod model;
 mod nodes;
+pub mod shapes;
 pub mod tangents;
 mod uri;
 mod vertices;

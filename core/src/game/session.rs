@@ -381,7 +381,7 @@ mod tests {
 
     #[test]
     fn the_session_schedules_tiers_under_its_frame_budget() {
-        let model = crate::probe::plane_model(0.5, 0.01);
+        let model = crate::asset::shapes::plane_model(0.5, 0.01);
         let mut s = Session::new(&model, 1, None, true);
         s.settings.set_shading_model(ShadingModel::Burley);
         let vp = Viewport {
@@ -427,7 +427,7 @@ mod tests {
 
     #[test]
     fn the_player_is_visible_and_things_behind_the_camera_are_not() {
-        let model = crate::probe::plane_model(0.5, 0.01);
+        let model = crate::asset::shapes::plane_model(0.5, 0.01);
         let mut s = Session::new(&model, 1, None, true);
         let vp = Viewport {
             width: 640,

@@ -192,7 +192,7 @@ impl CharacterGpu {
     }
 
     /// Recomputes the constants of every model it holds for `material` (when the material
-    /// changes; measured tables are cached per material, see `shading::bake`).
+    /// changes; the shipped tables are read once per material, see `shading::bake`).
     pub fn set_material(&self, queue: &wgpu::Queue, material: &Material) {
         for m in &self.params {
             queue.write_buffer(&m.buffer, 0, bytemuck::bytes_of(&m.model.params(material)));

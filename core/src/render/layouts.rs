@@ -24,9 +24,7 @@ pub(super) fn uniform(binding: u32, visibility: wgpu::ShaderStages) -> wgpu::Bin
 
 /// Bindings 1–3 of the frame group: the key light's shadow map, its comparison sampler and
 /// the penumbra map (`penumbra.rs`).
-pub(crate) fn shadow_map_entries(
-    visibility: wgpu::ShaderStages,
-) -> [wgpu::BindGroupLayoutEntry; 3] {
+pub fn shadow_map_entries(visibility: wgpu::ShaderStages) -> [wgpu::BindGroupLayoutEntry; 3] {
     [
         wgpu::BindGroupLayoutEntry {
             binding: 1,

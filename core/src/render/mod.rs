@@ -6,7 +6,6 @@
 //! reach such a model has no such pass, pipeline or target.
 
 mod character;
-pub mod conformance;
 mod counters;
 mod driver;
 mod frame;
@@ -34,14 +33,18 @@ pub use counters::LiveObjects;
 pub use driver::{Allocs, Clock, FrameDriver, FrameOutput, FrameTimes, FrameWork, Output};
 pub use frame::{FrameUniform, Light};
 pub use gpu::{Gpu, GpuError};
+pub use layouts::shadow_map_entries;
 pub use offscreen::{f16_to_f32, Offscreen, RgbaImage, OFFSCREEN_FORMAT};
-pub use penumbra::{jump_steps, BLOCK as PENUMBRA_BLOCK};
+pub use penumbra::{grid_texture as penumbra_grid_texture, jump_steps, BLOCK as PENUMBRA_BLOCK};
 pub use pipelines::{build_shader_source, CharacterPipelines, PipelineSet};
 pub use props::{PropInstance, PropKind};
 pub use readback::{read_buffer, read_mapped};
 pub use renderer::{DrawSet, FrameView, RenderStats, Renderer};
 pub use rig::{key_light, CharacterBound, CHARACTER, EXPOSURE, KEY_LIGHT_OFFSET};
-pub use shadow_map::{caster_shader_source, ShadowView, SHADOW_MAP_SIZE};
+pub use shadow_map::{
+    caster_shader_source, comparison_sampler, placeholder as no_shadow_map, ShadowView,
+    SHADOW_MAP_SIZE,
+};
 pub use sss_pass::SPLIT_FORMAT;
 pub use surface::{choose_format, SurfaceOptions, SurfaceTarget};
 pub use targets::{Targets, DEPTH_FORMAT, MSAA_SAMPLES};

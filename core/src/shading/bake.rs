@@ -1,5 +1,7 @@
 //! Per-material tables of the spatial subsurface models (`tabulated`, `preintegrated`),
-//! measured once per material by the project's Monte Carlo ([`crate::mc`]) and cached.
+//! measured offline by the project's Monte Carlo (`dermis-measure`'s `bake`, written by
+//! `dermis lut --out assets/sss`) and shipped in the binary like the pre-integration LUTs: the
+//! runtime never runs a Monte Carlo.
 //!
 //! - **Kernel**: the normal-incidence pencil-beam exitance of the semi-infinite medium, as the
 //!   power leaving through each ring [r_k, r_{k+1}) per unit incident power (specular
@@ -18,13 +20,13 @@
 //!   at normal incidence from behind, at thicknesses 0.25·2^k mm; past a diffusion length,
 //!   where too few photons get through to measure it, diffusion's e^{−σ_tr d} carries on.
 //!
-//! Seeds are fixed and differ from every reference set's, photons in fixed batches, so a bake
-//! is deterministic and independent of the thread count.
+//! A material no shipped file covers (the measurement commands' `--eta`, `--g`) is baked by
+//! the [`Baker`] the measurement crate installs; without one (the APK, whose materials are the
+//! shipped presets) the nearest shipped tables stand in, with a warning.
 
-use std::sync::{Arc, Mutex};
+use std::sync::{Arc, Mutex, OnceLock};
 
-use super::{fresnel, Material};
-use crate::mc::{self, Medium};
+use super::Material;
 
 /// Number of rings (besides the inner disk).
 pub const RINGS: usize = 20;
@@ -60,7 +62,7 @@ pub struct Budget {
     pub sphere_events: u64,
 }
 
-/// What the renderer bakes at material load.
+/// What the shipped tables and LUTs are baked with.
 pub const DEFAULT_BUDGET: Budget = Budget {
     kernel: 40_000,
     oblique: 10_000,
@@ -71,23 +73,6 @@ pub const DEFAULT_BUDGET: Budget = Budget {
     min_photons: 500,
     sphere: 200_000,
     sphere_events: 20_000_000,
-};
-
-/// Strips on each side of the edge for the forward shift.
-const STRIPS: usize = 48;
-
-/// A quick bake for tests that run the per-pixel code over many materials (the tables are
-/// noisier, the code paths the same).
-pub const QUICK_BUDGET: Budget = Budget {
-    kernel: 1_000,
-    oblique: 100,
-    slab: 100,
-    kernel_events: 100_000,
-    events: 10_000,
-    max_events: 2_000,
-    min_photons: 20,
-    sphere: 200,
-    sphere_events: 20_000,
 };
 
 #[derive(Clone, Debug, PartialEq)]
@@ -178,195 +163,148 @@ pub fn oblique_node(k: usize) -> f64 {
     x * x
 }
 
-pub fn medium(m: &Material, c: usize) -> Medium {
-    Medium::new(m.sigma_a[c], m.sigma_s_prime[c], m.g, m.eta)
+/// The shipped tables: baked at [`DEFAULT_BUDGET`] by `dermis lut --out assets/sss` for the
+/// presets at their own η and at the reference scenes' η = 1.4. Each file records the material
+/// and budget it was baked for; one that does not match is ignored.
+pub const SHIPPED: &[&[u8]] = &[
+    include_bytes!("../../../assets/sss/skin1-eta1.3.tables"),
+    include_bytes!("../../../assets/sss/skin1-eta1.4.tables"),
+    include_bytes!("../../../assets/sss/white-coat-eta1.0936.tables"),
+    include_bytes!("../../../assets/sss/white-coat-eta1.4.tables"),
+];
+
+/// File name of the shipped tables of `m`.
+pub fn file_name(m: &Material) -> String {
+    format!("{}-eta{}.tables", m.name, m.eta)
 }
 
-/// Photons for a run of `geom`/`source` within `events`: a pilot of a few photons measures
-/// the events per photon.
-fn photons_for(
-    med: &Medium,
-    (geom, source): (mc::Geometry, mc::Source),
-    wanted: u64,
-    events: u64,
-    budget: &Budget,
-    seed: u64,
-) -> u64 {
-    let pilot = 20.max(budget.min_photons.min(200));
-    let r = mc::simulate(
-        med,
-        geom,
-        source,
-        &detectors(&[], budget),
-        pilot,
-        seed ^ 0xA5A5,
-        1,
-    );
-    let per_photon = (r.events as f64 / pilot as f64).max(1.0);
-    ((events as f64 / per_photon) as u64).clamp(budget.min_photons, wanted.max(budget.min_photons))
-}
+const MAGIC: &[u8; 8] = b"DERMTAB1";
 
-fn detectors(edges: &[f64], budget: &Budget) -> mc::Detectors {
-    mc::Detectors {
-        edges: edges.to_vec(),
-        max_events: budget.max_events,
-        ..Default::default()
-    }
-}
-
-/// Measures the tables for `m` within `budget` on `threads` threads.
-pub fn measure(m: &Material, budget: Budget, threads: usize) -> Bake {
-    const SEED: u64 = 0x5EED_BA4E;
-    let edges = ring_edges(m);
-    let mut mass = vec![[0.0; 3]; edges.len() - 1];
-    let mut oblique = [[0.0; 3]; OBLIQUE_NODES];
-    let mut slab = [[0.0; 3]; SLAB_NODES];
-    let mut shift = [[0.0; 3]; OBLIQUE_NODES];
-    let semi = mc::Geometry::SemiInfinite;
-    for c in 0..3 {
-        let med = medium(m, c);
-        let seed = SEED + 1000 * c as u64;
-        let normal = (semi, mc::Source::Normal);
-        let n = photons_for(
-            &med,
-            normal,
+/// What tables were baked from: the material's optics, the budget and the table sizes.
+fn header(m: &Material, budget: &Budget) -> Vec<f64> {
+    let mut h: Vec<f64> = Vec::new();
+    h.extend(m.sigma_a);
+    h.extend(m.sigma_s_prime);
+    h.extend([m.eta, m.g]);
+    h.extend(
+        [
             budget.kernel,
+            budget.oblique,
+            budget.slab,
             budget.kernel_events,
-            &budget,
-            seed,
-        );
-        let r = mc::simulate(
-            &med,
-            semi,
-            mc::Source::Normal,
-            &detectors(&edges, &budget),
-            n,
-            seed,
-            threads,
-        );
-        for (k, w) in edges.windows(2).enumerate() {
-            let area = std::f64::consts::PI * (w[1] * w[1] - w[0] * w[0]);
-            mass[k][c] = r.reflectance_profile.values[k] * area;
+            budget.events,
+            budget.max_events,
+            budget.min_photons,
+            budget.sphere,
+            budget.sphere_events,
+        ]
+        .map(|v| v as f64),
+    );
+    h.extend([RINGS, OBLIQUE_NODES, SLAB_NODES].map(|v| v as f64));
+    h
+}
+
+impl Bake {
+    /// Little-endian f64: magic, the [`header`], the edges, masses, q(μ), δ(μ) and slabs.
+    pub fn to_bytes(&self, m: &Material, budget: &Budget) -> Vec<u8> {
+        let mut values = header(m, budget);
+        values.extend(&self.edges);
+        values.extend(self.mass.iter().flatten());
+        values.extend(self.oblique.iter().flatten());
+        values.extend(self.shift.iter().flatten());
+        values.extend(self.slab.iter().flatten());
+        let mut out = MAGIC.to_vec();
+        for v in values {
+            out.extend(v.to_le_bytes());
         }
-        // Oblique beams: reflectance and forward shift from the shadow-edge estimator over
-        // symmetric strips (the cumulative exitance across the edge).
-        let x_max = *edges.last().unwrap_or(&10.0);
-        let strips: Vec<f64> = (0..=2 * STRIPS)
-            .map(|i| x_max * (i as f64 / STRIPS as f64 - 1.0))
+        out
+    }
+
+    /// The tables in `bytes` if they were baked for `m` at `budget`.
+    pub fn from_bytes(bytes: &[u8], m: &Material, budget: &Budget) -> Option<Bake> {
+        let h = header(m, budget);
+        let body = bytes.strip_prefix(MAGIC.as_slice())?;
+        let values: Vec<f64> = body
+            .chunks_exact(8)
+            .map(|b| f64::from_le_bytes(b.try_into().unwrap_or([0; 8])))
             .collect();
-        let oblique_run = |mu: f64, seed: u64| {
-            let source = mc::Source::Collimated { mu };
-            let n = photons_for(
-                &med,
-                (semi, source),
-                budget.oblique,
-                budget.events,
-                &budget,
-                seed,
-            );
-            let cap = budget.max_events;
-            let e = mc::edge::shadow_edge_with(&med, mu, &strips, cap, n, seed, threads);
-            let r = e.reflectance.mean;
-            // E[Δx]·R = ∫₀^∞ (R − M) dx − ∫_{−∞}^0 M dx; the beam travels toward −x.
-            let moment: f64 = strips
-                .windows(2)
-                .zip(&e.strips.values)
-                .map(|(w, m)| {
-                    let width = w[1] - w[0];
-                    if w[0] >= 0.0 {
-                        (r - m) * width
-                    } else {
-                        -m * width
-                    }
-                })
-                .sum();
-            (r, -moment / r.max(f64::MIN_POSITIVE))
-        };
-        let (normal, _) = oblique_run(1.0, seed + 1);
-        for k in 1..OBLIQUE_NODES - 1 {
-            let mu = oblique_node(k);
-            let (r, delta) = oblique_run(mu, seed + 10 + k as u64);
-            // Where the medium reflects (next to) nothing the ratio is noise: Fresnel's
-            // transmission ratio stands in; q stays within [0, 4] whatever the noise.
-            oblique[k][c] = if normal > 1e-9 {
-                (r / normal).clamp(0.0, 4.0)
-            } else {
-                fresnel::transmittance_shader(m.eta, mu)
-                    / fresnel::transmittance_shader(m.eta, 1.0).max(1e-12)
-            };
-            shift[k][c] = if delta.is_finite() {
-                delta.clamp(0.0, x_max)
-            } else {
-                0.0
-            };
+        let rings = RINGS + 1;
+        let want = h.len() + (rings + 1) + 3 * rings + 3 * (2 * OBLIQUE_NODES + SLAB_NODES);
+        if body.len() % 8 != 0 || values.len() != want || values[..h.len()] != h[..] {
+            return None;
         }
-        oblique[0][c] = 0.0;
-        oblique[OBLIQUE_NODES - 1][c] = 1.0;
-        shift[0][c] = shift[1][c];
-        shift[OBLIQUE_NODES - 1][c] = 0.0;
-        let mut extrapolating = false;
-        for k in 0..SLAB_NODES {
-            let d = SLAB_FIRST_MM * (1u32 << k) as f64;
-            let geom = mc::Geometry::Slab { d };
-            let seed = seed + 100 + k as u64;
-            let source = mc::Source::Normal;
-            let n = photons_for(
-                &med,
-                (geom, source),
-                budget.slab,
-                budget.events,
-                &budget,
-                seed,
-            );
-            let r = mc::simulate(
-                &med,
-                geom,
-                source,
-                &detectors(&[], &budget),
-                n,
-                seed,
-                threads,
-            );
-            // Diffuse transmittance: the unscattered beam goes straight through (it is the
-            // light source seen through the slab, not translucency).
-            let diffuse = (r.transmittance.mean - r.unscattered.mean).max(0.0);
-            let se = r.transmittance.std_err + r.unscattered.std_err;
-            // Thick slabs transmit too few photons to measure: past the first node beyond a
-            // diffusion length whose relative error exceeds 25 %, diffusion's asymptotic
-            // e^{−σ_tr d} carries on from the last measured node.
-            let thick = d * m.sigma_tr()[c] >= 1.0;
-            let poor = diffuse <= 0.0 || se > 0.25 * diffuse;
-            slab[k][c] = if k > 0 && (extrapolating || (thick && poor)) {
-                extrapolating = true;
-                let prev = slab[k - 1][c];
-                let d_prev = SLAB_FIRST_MM * (1u32 << (k - 1)) as f64;
-                prev * (-(m.sigma_tr()[c] * (d - d_prev))).exp()
-            } else {
-                diffuse
-            };
-        }
+        let mut it = values[h.len()..].iter().copied();
+        let mut next = || it.next().unwrap_or(0.0);
+        let edges: Vec<f64> = (0..=rings).map(|_| next()).collect();
+        let mut triple = || -> [f64; 3] { std::array::from_fn(|_| next()) };
+        let mass = (0..rings).map(|_| triple()).collect();
+        let oblique = std::array::from_fn(|_| triple());
+        let shift = std::array::from_fn(|_| triple());
+        let slab = std::array::from_fn(|_| triple());
+        Some(Bake {
+            edges,
+            mass,
+            oblique,
+            shift,
+            slab,
+        })
     }
-    Bake {
-        edges,
-        mass,
-        oblique,
-        shift,
-        slab,
-    }
+}
+
+/// Bakes the tables of a material no shipped file covers (installed by the measurement
+/// crate: `dermis_measure::bake::install`).
+pub type Baker = fn(&Material) -> Bake;
+static BAKER: OnceLock<Baker> = OnceLock::new();
+
+/// Installs the baker for unshipped materials (the first installation wins).
+pub fn install_baker(baker: Baker) {
+    let _ = BAKER.set(baker);
 }
 
 type Cache = Mutex<Vec<(Material, Arc<Bake>)>>;
 static CACHE: Cache = Mutex::new(Vec::new());
 
-/// The tables for `m`, measured on first use with [`DEFAULT_BUDGET`] and cached for the
-/// process (a game switching models or materials measures each material once).
+/// The shipped tables baked for `m`, if any.
+pub fn shipped(m: &Material) -> Option<Bake> {
+    SHIPPED
+        .iter()
+        .find_map(|b| Bake::from_bytes(b, m, &DEFAULT_BUDGET))
+}
+
+/// The tables for `m`, cached for the process: the shipped ones, else the installed
+/// [`Baker`]'s, else (logged) the shipped tables of the preset of the same name with the
+/// nearest η.
 pub fn for_material(m: &Material) -> Arc<Bake> {
     let mut cache = CACHE.lock().unwrap_or_else(|e| e.into_inner());
     if let Some((_, b)) = cache.iter().find(|(k, _)| k == m) {
         return b.clone();
     }
-    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
-    let bake = Arc::new(measure(m, DEFAULT_BUDGET, threads));
+    let bake = Arc::new(match (shipped(m), BAKER.get()) {
+        (Some(b), _) => b,
+        (None, Some(baker)) => baker(m),
+        (None, None) => nearest_shipped(m),
+    });
     cache.push((*m, bake.clone()));
     bake
+}
+
+/// The stand-in for an unshipped material without a baker.
+fn nearest_shipped(m: &Material) -> Bake {
+    let presets = super::material::PRESETS;
+    let same_name = presets.iter().find(|p| p.name == m.name);
+    let preset = same_name.unwrap_or(&presets[0]);
+    log::warn!(
+        "no shipped subsurface tables for {} (η {}, g {}): using {}'s (`dermis lut`)",
+        m.name,
+        m.eta,
+        m.g,
+        preset.name
+    );
+    shipped(preset).unwrap_or_else(|| Bake {
+        edges: ring_edges(m),
+        mass: vec![[0.0; 3]; RINGS + 1],
+        oblique: [[1.0; 3]; OBLIQUE_NODES],
+        shift: [[0.0; 3]; OBLIQUE_NODES],
+        slab: [[0.0; 3]; SLAB_NODES],
+    })
 }

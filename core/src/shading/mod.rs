@@ -9,7 +9,6 @@
 
 pub mod bake;
 pub mod burley;
-pub mod conformance;
 pub mod dipole;
 pub mod edge_spread;
 pub mod fresnel;

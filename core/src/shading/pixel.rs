@@ -1,7 +1,7 @@
 //! One pixel's shading inputs in f64, as the renderer's `make_surface` produces them: what
 //! each model's f64 reference (`ward::shade`, `dipole::shade`, `oss::shade`,
 //! `subsurface::local`) evaluates, and what the GPU conformance harness
-//! (the renderer's `conformance` module) feeds the renderer's WGSL.
+//! (`dermis_measure::conformance`) feeds the renderer's WGSL.
 
 use glam::DVec3;
 

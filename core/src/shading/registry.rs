@@ -4,7 +4,7 @@ use std::sync::Arc;
 
 use glam::DVec3;
 
-use super::bake::{self, Bake};
+use super::bake::Bake;
 use super::pixel::Pixel;
 use super::preintegrated::{self, Lut};
 use super::subsurface::{self, Kernel};
@@ -91,7 +91,7 @@ pub struct Descriptor {
     pub lut: Option<fn(&Material) -> Arc<Lut>>,
     /// f64 reference of the shader's `shade` (LUT models: the flat-ground limit without it).
     pub shade: fn(&ModelParams, &Pixel) -> DVec3,
-    /// f64 reference of the probed sub-function at x (see `conformance::reference_probe`).
+    /// f64 reference of the probed sub-function at x (see `dermis_measure::conformance::reference_probe`).
     pub probe: fn(&ModelParams, &Pixel, f64) -> DVec3,
     /// Its prediction of the total diffuse reflectance, semi-infinite (None) or of a slab
     /// (mm) — `dermis sss`.
@@ -384,12 +384,11 @@ impl ShadingModel {
         (self.descriptor().params)(material)
     }
 
-    /// [`Self::params`] with the measured tables of `material` baked within `budget` (tests
-    /// that run the per-pixel code over many materials use a quick one).
-    pub fn params_with(self, material: &Material, budget: bake::Budget) -> ModelParams {
-        let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    /// [`Self::params`] from the given measured `tables` of `material` (tests that run the
+    /// per-pixel code over many materials bake quick ones: `dermis_measure::bake::quick`).
+    pub fn params_with(self, material: &Material, tables: &Bake) -> ModelParams {
         match self.descriptor().params_from {
-            Some(from) => from(&bake::measure(material, budget, threads), material),
+            Some(from) => from(tables, material),
             None => self.params(material),
         }
     }

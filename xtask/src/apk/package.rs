@@ -41,9 +41,10 @@ pub fn stage_assets(src: &Path, dest: &Path) -> Result<usize, String> {
         entries.sort();
         for p in entries {
             let name = p.file_name().and_then(|n| n.to_str()).unwrap_or("");
-            // `.lut`: the preintegrated model's tables are compiled into the library
+            // `.lut`, `.tables`: the spatial models' tables are compiled into the library
             // (`include_bytes!`), a copy among the assets would be dead weight.
-            if name.starts_with('.') || name.ends_with(".md") || name.ends_with(".lut") {
+            let baked = name.ends_with(".lut") || name.ends_with(".tables");
+            if name.starts_with('.') || name.ends_with(".md") || baked {
                 continue;
             }
             if p.is_dir() {

@@ -32,7 +32,7 @@
 //!   power. Per incident power multiply by 1 − R_F(normal) = 1 − ((η−1)/(η+1))².
 //!
 //! Only ω = σ_s/σ_t (σ_s = σ'_s/(1 − g)), g and η matter for a half-space: the result does not
-//! depend on the length scale. Accuracy against the Monte Carlo of [`crate::mc`]: ≤ 0.6 %
+//! depend on the length scale. Accuracy against the Monte Carlo of the Monte Carlo (`dermis-measure`): ≤ 0.6 %
 //! for skin1 / white coat at η = 1.0936…1.4 (g = 0), ≤ 0.4 % for HG g ∈ [−0.5, 0.9] (see
 //! the module tests); against the exact H-function result for η = 1, g = 0: ~1e-10; the
 //! default quadrature agrees with 48 + 48 directions to ~1e-4 relative. Cost: one 28 × 28
@@ -40,6 +40,8 @@
 
 mod linalg;
 mod quadrature;
+
+pub use quadrature::gauss_legendre01;
 #[cfg(test)]
 mod tests;
 
@@ -57,7 +59,7 @@ pub const G_MAX: f64 = 0.999;
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Reflectance {
     /// Diffuse reflectance per unit *incident* power (specular excluded) — what
-    /// [`crate::mc::total_reflectance`] estimates.
+    /// the Monte Carlo (`dermis_measure::mc::total_reflectance`) estimates.
     pub per_incident: f64,
     /// Diffuse reflectance per unit power that *entered* the medium, `per_incident /
     /// (1 − specular)` — Jensen's R_d convention; equals 1 for σ_a = 0.
@@ -263,7 +265,7 @@ fn half_space_albedo(
             if eta == 1.0 {
                 0.0
             } else {
-                crate::mc::fresnel::fresnel(m, 1.0 / eta).0
+                crate::shading::fresnel::reflectance(1.0 / eta, m)
             }
         })
         .collect();

@@ -4,32 +4,7 @@
 //! Monte Carlo in the limit where the answer is known exactly.
 #![allow(dead_code)]
 
-/// Gauss–Legendre nodes and weights on [0, 1].
-pub(crate) fn gauss_legendre01(n: usize) -> (Vec<f64>, Vec<f64>) {
-    let mut x = vec![0.0; n];
-    let mut w = vec![0.0; n];
-    for i in 0..n {
-        let mut z = (std::f64::consts::PI * (i as f64 + 0.75) / (n as f64 + 0.5)).cos();
-        let mut dp = 0.0;
-        for _ in 0..100 {
-            let (mut p0, mut p1) = (1.0, z);
-            for k in 2..=n {
-                let p2 = ((2 * k - 1) as f64 * z * p1 - (k - 1) as f64 * p0) / k as f64;
-                p0 = p1;
-                p1 = p2;
-            }
-            dp = n as f64 * (z * p1 - p0) / (z * z - 1.0);
-            let dz = p1 / dp;
-            z -= dz;
-            if dz.abs() < 1e-15 {
-                break;
-            }
-        }
-        x[i] = 0.5 * (1.0 - z);
-        w[i] = 1.0 / ((1.0 - z * z) * dp * dp);
-    }
-    (x, w)
-}
+pub use dermis_core::shading::transport::gauss_legendre01;
 
 /// Chandrasekhar's H(μ) for isotropic scattering with single-scattering albedo ω ∈ (0, 1],
 /// from H(μ) = 1 + (ω/2) μ H(μ) ∫₀¹ H(μ')/(μ + μ') dμ' (Nyström with 32 Gauss–Legendre
@@ -72,6 +47,6 @@ pub(crate) fn h_function(omega: f64, mu: f64) -> f64 {
 
 /// Exact diffuse (plane) albedo of an index-matched isotropic half-space for collimated
 /// incidence at cosine μ₀: 1 − H(μ₀)√(1 − ω).
-pub(crate) fn plane_albedo(omega: f64, mu0: f64) -> f64 {
+pub fn plane_albedo(omega: f64, mu0: f64) -> f64 {
     1.0 - h_function(omega, mu0) * (1.0 - omega).sqrt()
 }

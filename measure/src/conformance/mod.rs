@@ -1,4 +1,4 @@
-//! What the GPU conformance harness (the renderer's `conformance` module, which runs **the
+//! The GPU conformance suite. What the harness ([`harness`], which runs **the
 //! WGSL functions the renderer uses** in a compute shader on the real driver) is compared
 //! with: the f64 references beside each model (`ward::shade`, `dipole::shade`, `oss::shade`,
 //! `subsurface::local` and their sub-functions and nondimensional kernels), per model and per
@@ -22,8 +22,10 @@
 
 use glam::DVec3;
 
-use super::pixel::Pixel;
-use super::{dipole, fresnel, oss, ward, ModelParams, ShadingModel};
+use dermis_core::shading::pixel::Pixel;
+use dermis_core::shading::{dipole, fresnel, oss, ward, ModelParams, ShadingModel};
+
+pub mod harness;
 
 /// Whether the compute harness can check `model`: models that sample a LUT texture are
 /// checked by rendering instead (`tests/subsurface_render.rs`), since texture filtering's

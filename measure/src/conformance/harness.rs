@@ -1,6 +1,6 @@
 //! GPU conformance harness: runs **the WGSL functions the renderer uses** in a compute shader
 //! on the real driver (lavapipe in CI), for comparison with the f64 references beside each
-//! model (`shading::conformance`: what is compared, and the tolerances).
+//! model (the parent module: what is compared, and the tolerances).
 //!
 //! # What runs
 //! * **Shade kernel** (`shaders/conformance_shade.wgsl`), f32: appended, with a per-model
@@ -20,14 +20,26 @@ use std::collections::HashMap;
 use glam::DVec3;
 use wgpu::util::DeviceExt;
 
-use super::frame::FrameUniform;
-use super::layouts::uniform;
-use super::readback::read_buffer;
-use super::Gpu;
-use crate::shader::{compose, ShaderDefs};
-use crate::shading::conformance::{NdFunction, Precision};
-use crate::shading::pixel::Pixel;
-use crate::shading::{ModelParams, ShadingModel};
+use dermis_core::render::{read_buffer, FrameUniform, Gpu};
+use dermis_core::shader::{compose, ShaderDefs};
+use dermis_core::shading::pixel::Pixel;
+use dermis_core::shading::{ModelParams, ShadingModel};
+
+use super::{NdFunction, Precision};
+
+/// A uniform buffer at `binding`.
+fn uniform(binding: u32, visibility: wgpu::ShaderStages) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Uniform,
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    }
+}
 
 /// The f32 shade kernel (not a composer module: appended after composition).
 pub const SHADE_KERNEL: &str = include_str!("../../../shaders/conformance_shade.wgsl");
@@ -163,7 +175,7 @@ impl<'g> Harness<'g> {
             gpu,
             frame_layout: make("conformance frame", &{
                 let [map, sampler, penumbra] =
-                    super::layouts::shadow_map_entries(wgpu::ShaderStages::COMPUTE);
+                    dermis_core::render::shadow_map_entries(wgpu::ShaderStages::COMPUTE);
                 [
                     uniform(0, wgpu::ShaderStages::COMPUTE),
                     map,
@@ -172,9 +184,9 @@ impl<'g> Harness<'g> {
                 ]
             }),
             no_shadow: (
-                super::shadow_map::placeholder(device, &gpu.queue),
-                super::shadow_map::comparison_sampler(device),
-                super::penumbra::grid_texture(device, 1, "no penumbra map"),
+                dermis_core::render::no_shadow_map(device, &gpu.queue),
+                dermis_core::render::comparison_sampler(device),
+                dermis_core::render::penumbra_grid_texture(device, 1, "no penumbra map"),
             ),
             model_layout: make(
                 "conformance model",

@@ -131,7 +131,7 @@ pub fn score(model: &[[f64; 3]], entry: &Entry) -> ErrorStats {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::reference::Scene;
+    use crate::ground_truth::Scene;
 
     fn entry() -> Entry {
         Entry {

@@ -72,7 +72,7 @@ pub mod rng;
 pub mod sphere;
 pub mod walk;
 
-pub(crate) mod chandrasekhar;
+pub mod chandrasekhar;
 pub(crate) mod dipole_check;
 #[cfg(test)]
 mod scene_tests;

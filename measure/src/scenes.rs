@@ -1,4 +1,4 @@
-//! Measurement scenes: the reference scenes of [`crate::reference`] rendered **through the
+//! Measurement scenes: the reference scenes of [`crate::ground_truth`] rendered **through the
 //! real renderer** (the character pipeline, the game's shaders and passes) and read back in
 //! the Monte Carlo's units, so every shading model can be scored against path-traced ground
 //! truth (`dermis profile`, `dermis bench shading`, the rendered-vs-reference tests).
@@ -17,13 +17,13 @@
 
 use glam::{Mat4, Vec3};
 
-use crate::anim::Pose;
-use crate::asset::{
-    Aabb, Material as AssetMaterial, Mesh, Model, Node, Primitive, Skin, Transform, Vertex,
-};
-use crate::reference::Scene;
-use crate::render::{DrawSet, FrameView, Gpu, Light, Offscreen, Renderer};
-use crate::shading::{fresnel, subsurface, units, Material, ShadingModel};
+use dermis_core::anim::Pose;
+use dermis_core::asset::shapes::{plane_model, sphere_model};
+use dermis_core::asset::Model;
+use dermis_core::render::{DrawSet, FrameView, Gpu, Light, Offscreen, Renderer};
+use dermis_core::shading::{fresnel, subsurface, units, Material, ShadingModel};
+
+use crate::ground_truth::Scene;
 
 /// The shadow map's size in these scenes: texels of 0.07 mm (white coat's edge view) or
 /// finer, below the reference's narrowest strips (the game's map is 1024² over 2.3 m).
@@ -36,112 +36,8 @@ const FAR_M: f32 = 1000.0;
 /// Pixels whose surface is seen at n·v below this are not read (silhouette, MSAA edges).
 const MIN_NV: f64 = 0.3;
 
-fn vertex(position: Vec3, normal: Vec3, thickness_m: f32) -> Vertex {
-    let t = if normal.x.abs() > 0.9 {
-        Vec3::Z
-    } else {
-        Vec3::X
-    };
-    let tangent = (t - normal * normal.dot(t)).normalize();
-    Vertex {
-        position: position.to_array(),
-        normal: normal.to_array(),
-        tangent: tangent.extend(1.0).to_array(),
-        uv: [0.0, 0.0],
-        joints: [0; 4],
-        weights: [1.0, 0.0, 0.0, 0.0],
-        thickness: thickness_m,
-    }
-}
-
-fn skinned_model(name: &str, vertices: Vec<Vertex>, indices: Vec<u32>, half: f32) -> Model {
-    let node = |mesh, skin, parent| Node {
-        name: None,
-        parent,
-        children: Vec::new(),
-        local: Transform::default(),
-        mesh,
-        skin,
-    };
-    Model {
-        source: name.into(),
-        nodes: vec![node(None, None, None), node(Some(0), Some(0), None)],
-        roots: vec![0, 1],
-        meshes: vec![Mesh {
-            name: None,
-            primitives: vec![Primitive {
-                vertices,
-                indices,
-                material: Some(0),
-                bounds: Aabb {
-                    min: Vec3::splat(-half),
-                    max: Vec3::splat(half),
-                },
-            }],
-        }],
-        skins: vec![Skin {
-            name: None,
-            joints: vec![0],
-            inverse_bind: vec![Mat4::IDENTITY],
-        }],
-        materials: vec![AssetMaterial {
-            name: None,
-            base_color_factor: [1.0; 4],
-            base_color_texture: None,
-        }],
-        textures: Vec::new(),
-        animations: Vec::new(),
-    }
-}
-
-/// Two triangles per cell of a (cols + 1) × (rows + 1) vertex grid, row-major.
-fn grid_indices(cols: u32, rows: u32) -> Vec<u32> {
-    let mut indices = Vec::with_capacity((cols * rows * 6) as usize);
-    for j in 0..rows {
-        for i in 0..cols {
-            let a = j * (cols + 1) + i;
-            let (b, c, d) = (a + 1, a + cols + 1, a + cols + 2);
-            indices.extend_from_slice(&[a, c, b, b, c, d]);
-        }
-    }
-    indices
-}
-
-/// A plane of half-size `half_m` metres in x–z, facing +y, skinned to one joint.
-pub fn plane_model(half_m: f32, thickness_m: f32) -> Model {
-    let n = 32u32;
-    let mut vertices = Vec::new();
-    for j in 0..=n {
-        for i in 0..=n {
-            let (u, v) = (i as f32 / n as f32, j as f32 / n as f32);
-            let p = Vec3::new((u * 2.0 - 1.0) * half_m, 0.0, (v * 2.0 - 1.0) * half_m);
-            vertices.push(vertex(p, Vec3::Y, thickness_m));
-        }
-    }
-    skinned_model("flat medium", vertices, grid_indices(n, n), half_m)
-}
-
-/// A UV sphere of radius `r_m` metres at the origin.
-pub fn sphere_model(r_m: f32, thickness_m: f32) -> Model {
-    let (rings, segments) = (96u32, 192u32);
-    let mut vertices = Vec::new();
-    for j in 0..=rings {
-        let theta = std::f32::consts::PI * j as f32 / rings as f32;
-        for i in 0..=segments {
-            let phi = std::f32::consts::TAU * i as f32 / segments as f32;
-            let n = Vec3::new(
-                theta.sin() * phi.cos(),
-                theta.sin() * phi.sin(),
-                theta.cos(),
-            );
-            vertices.push(vertex(n * r_m, n, thickness_m));
-        }
-    }
-    skinned_model("sphere", vertices, grid_indices(segments, rings), r_m)
-}
-
 /// The renderer and target the scenes are drawn with, reused across scenes and models.
-pub struct Probe {
+pub struct SceneRenderer {
     renderer: Renderer,
     target: Offscreen,
     /// The geometry currently loaded (so consecutive renders of one scene upload it once).
@@ -166,7 +62,7 @@ struct View {
 /// What one render returns: per bin and channel, the exitance in the reference's units.
 pub type Exitance = Vec<[f64; 3]>;
 
-impl Probe {
+impl SceneRenderer {
     pub fn new(gpu: &Gpu) -> Self {
         let mut renderer = Renderer::new(gpu, wgpu::TextureFormat::Rgba16Float);
         renderer.clear = wgpu::Color::BLACK;
@@ -501,7 +397,7 @@ fn edge_occluder(theta: f32, half_mm: f64) -> Occluder {
 /// view so nothing but the medium is seen; its thickness makes OSS see the depth it uses for
 /// a semi-infinite medium.
 fn plane(half_mm: f64) -> Geometry {
-    let depth_mm = crate::shading::prediction::OSS_SEMI_INFINITE_MM;
+    let depth_mm = dermis_core::shading::prediction::OSS_SEMI_INFINITE_MM;
     Geometry::Plane {
         half_mm: half_mm * 1.5,
         thickness_mm: depth_mm / units::OSS_DEPTH_SCALE,

@@ -29,7 +29,7 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 
 use crate::mc::{self, Medium};
-use crate::shading::material::{Material, SKIN1, WHITE_COAT};
+use dermis_core::shading::material::{Material, SKIN1, WHITE_COAT};
 
 /// Relative index of refraction of the acceptance case.
 pub const ETA: f64 = 1.4;

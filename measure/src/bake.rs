@@ -1,0 +1,291 @@
+//! The Monte Carlo bakes of the spatial models' tables (`dermis_core::shading::bake`: kernel,
+//! q(μ), δ(μ), slab transmittances) and, in [`crate::lut`], of the pre-integration LUT. Run
+//! offline by `dermis lut` (the shipped `assets/sss/*.tables` and `*.lut`) and, through
+//! [`install`], for a material no shipped file covers (the measurement commands' `--eta`,
+//! `--g`).
+//!
+//! Seeds are fixed and differ from every reference set's, photons in fixed batches, so a bake
+//! is deterministic and independent of the thread count.
+
+use dermis_core::shading::bake::{
+    self, oblique_node, ring_edges, Bake, Budget, OBLIQUE_NODES, SLAB_FIRST_MM, SLAB_NODES,
+};
+use dermis_core::shading::{fresnel, preintegrated, Material};
+
+use crate::mc::{self, Medium};
+
+/// Lets the runtime bake the tables and LUT of materials no shipped file covers, at the
+/// shipped budget (the desktop binary installs it at start; the APK never links it).
+pub fn install() {
+    bake::install_baker(|m| measure(m, bake::DEFAULT_BUDGET, threads()));
+    preintegrated::install_baker(|m, b| {
+        crate::lut::bake_lut(b, m, &bake::DEFAULT_BUDGET, threads())
+    });
+}
+
+/// The machine's threads.
+pub fn threads() -> usize {
+    std::thread::available_parallelism().map_or(1, |n| n.get())
+}
+
+/// The tables of `m` measured with [`QUICK_BUDGET`] (for tests that run the per-pixel code
+/// over many materials).
+pub fn quick(m: &Material) -> Bake {
+    measure(m, QUICK_BUDGET, threads())
+}
+
+/// Strips on each side of the edge for the forward shift.
+const STRIPS: usize = 48;
+
+/// A quick bake for tests that run the per-pixel code over many materials (the tables are
+/// noisier, the code paths the same).
+pub const QUICK_BUDGET: Budget = Budget {
+    kernel: 1_000,
+    oblique: 100,
+    slab: 100,
+    kernel_events: 100_000,
+    events: 10_000,
+    max_events: 2_000,
+    min_photons: 20,
+    sphere: 200,
+    sphere_events: 20_000,
+};
+
+pub fn medium(m: &Material, c: usize) -> Medium {
+    Medium::new(m.sigma_a[c], m.sigma_s_prime[c], m.g, m.eta)
+}
+
+/// Photons for a run of `geom`/`source` within `events`: a pilot of a few photons measures
+/// the events per photon.
+fn photons_for(
+    med: &Medium,
+    (geom, source): (mc::Geometry, mc::Source),
+    wanted: u64,
+    events: u64,
+    budget: &Budget,
+    seed: u64,
+) -> u64 {
+    let pilot = 20.max(budget.min_photons.min(200));
+    let r = mc::simulate(
+        med,
+        geom,
+        source,
+        &detectors(&[], budget),
+        pilot,
+        seed ^ 0xA5A5,
+        1,
+    );
+    let per_photon = (r.events as f64 / pilot as f64).max(1.0);
+    ((events as f64 / per_photon) as u64).clamp(budget.min_photons, wanted.max(budget.min_photons))
+}
+
+fn detectors(edges: &[f64], budget: &Budget) -> mc::Detectors {
+    mc::Detectors {
+        edges: edges.to_vec(),
+        max_events: budget.max_events,
+        ..Default::default()
+    }
+}
+
+/// Measures the tables for `m` within `budget` on `threads` threads.
+pub fn measure(m: &Material, budget: Budget, threads: usize) -> Bake {
+    const SEED: u64 = 0x5EED_BA4E;
+    let edges = ring_edges(m);
+    let mut mass = vec![[0.0; 3]; edges.len() - 1];
+    let mut oblique = [[0.0; 3]; OBLIQUE_NODES];
+    let mut slab = [[0.0; 3]; SLAB_NODES];
+    let mut shift = [[0.0; 3]; OBLIQUE_NODES];
+    let semi = mc::Geometry::SemiInfinite;
+    for c in 0..3 {
+        let med = medium(m, c);
+        let seed = SEED + 1000 * c as u64;
+        let normal = (semi, mc::Source::Normal);
+        let n = photons_for(
+            &med,
+            normal,
+            budget.kernel,
+            budget.kernel_events,
+            &budget,
+            seed,
+        );
+        let r = mc::simulate(
+            &med,
+            semi,
+            mc::Source::Normal,
+            &detectors(&edges, &budget),
+            n,
+            seed,
+            threads,
+        );
+        for (k, w) in edges.windows(2).enumerate() {
+            let area = std::f64::consts::PI * (w[1] * w[1] - w[0] * w[0]);
+            mass[k][c] = r.reflectance_profile.values[k] * area;
+        }
+        // Oblique beams: reflectance and forward shift from the shadow-edge estimator over
+        // symmetric strips (the cumulative exitance across the edge).
+        let x_max = *edges.last().unwrap_or(&10.0);
+        let strips: Vec<f64> = (0..=2 * STRIPS)
+            .map(|i| x_max * (i as f64 / STRIPS as f64 - 1.0))
+            .collect();
+        let oblique_run = |mu: f64, seed: u64| {
+            let source = mc::Source::Collimated { mu };
+            let n = photons_for(
+                &med,
+                (semi, source),
+                budget.oblique,
+                budget.events,
+                &budget,
+                seed,
+            );
+            let cap = budget.max_events;
+            let e = mc::edge::shadow_edge_with(&med, mu, &strips, cap, n, seed, threads);
+            let r = e.reflectance.mean;
+            // E[Δx]·R = ∫₀^∞ (R − M) dx − ∫_{−∞}^0 M dx; the beam travels toward −x.
+            let moment: f64 = strips
+                .windows(2)
+                .zip(&e.strips.values)
+                .map(|(w, m)| {
+                    let width = w[1] - w[0];
+                    if w[0] >= 0.0 {
+                        (r - m) * width
+                    } else {
+                        -m * width
+                    }
+                })
+                .sum();
+            (r, -moment / r.max(f64::MIN_POSITIVE))
+        };
+        let (normal, _) = oblique_run(1.0, seed + 1);
+        for k in 1..OBLIQUE_NODES - 1 {
+            let mu = oblique_node(k);
+            let (r, delta) = oblique_run(mu, seed + 10 + k as u64);
+            // Where the medium reflects (next to) nothing the ratio is noise: Fresnel's
+            // transmission ratio stands in; q stays within [0, 4] whatever the noise.
+            oblique[k][c] = if normal > 1e-9 {
+                (r / normal).clamp(0.0, 4.0)
+            } else {
+                fresnel::transmittance_shader(m.eta, mu)
+                    / fresnel::transmittance_shader(m.eta, 1.0).max(1e-12)
+            };
+            shift[k][c] = if delta.is_finite() {
+                delta.clamp(0.0, x_max)
+            } else {
+                0.0
+            };
+        }
+        oblique[0][c] = 0.0;
+        oblique[OBLIQUE_NODES - 1][c] = 1.0;
+        shift[0][c] = shift[1][c];
+        shift[OBLIQUE_NODES - 1][c] = 0.0;
+        let mut extrapolating = false;
+        for k in 0..SLAB_NODES {
+            let d = SLAB_FIRST_MM * (1u32 << k) as f64;
+            let geom = mc::Geometry::Slab { d };
+            let seed = seed + 100 + k as u64;
+            let source = mc::Source::Normal;
+            let n = photons_for(
+                &med,
+                (geom, source),
+                budget.slab,
+                budget.events,
+                &budget,
+                seed,
+            );
+            let r = mc::simulate(
+                &med,
+                geom,
+                source,
+                &detectors(&[], &budget),
+                n,
+                seed,
+                threads,
+            );
+            // Diffuse transmittance: the unscattered beam goes straight through (it is the
+            // light source seen through the slab, not translucency).
+            let diffuse = (r.transmittance.mean - r.unscattered.mean).max(0.0);
+            let se = r.transmittance.std_err + r.unscattered.std_err;
+            // Thick slabs transmit too few photons to measure: past the first node beyond a
+            // diffusion length whose relative error exceeds 25 %, diffusion's asymptotic
+            // e^{−σ_tr d} carries on from the last measured node.
+            let thick = d * m.sigma_tr()[c] >= 1.0;
+            let poor = diffuse <= 0.0 || se > 0.25 * diffuse;
+            slab[k][c] = if k > 0 && (extrapolating || (thick && poor)) {
+                extrapolating = true;
+                let prev = slab[k - 1][c];
+                let d_prev = SLAB_FIRST_MM * (1u32 << (k - 1)) as f64;
+                prev * (-(m.sigma_tr()[c] * (d - d_prev))).exp()
+            } else {
+                diffuse
+            };
+        }
+    }
+    Bake {
+        edges,
+        mass,
+        oblique,
+        shift,
+        slab,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ground_truth::acceptance_material;
+    use dermis_core::shading::material::{PRESETS, SKIN1};
+
+    #[test]
+    fn every_preset_has_shipped_tables_at_the_current_budget() {
+        // Tables baked with another budget, material or layout would be ignored (and the
+        // runtime would fall back to another material's): `dermis lut --out assets/sss`.
+        for m in PRESETS.iter().flat_map(|m| [*m, acceptance_material(m)]) {
+            let b = bake::shipped(&m)
+                .unwrap_or_else(|| panic!("no shipped tables for {}", bake::file_name(&m)));
+            assert!(b.mass.iter().flatten().all(|v| v.is_finite() && *v >= 0.0));
+            assert!(b.reflectance().iter().all(|r| *r > 0.01 && *r < 1.0));
+        }
+    }
+
+    #[test]
+    fn the_shipped_tables_are_what_the_bake_measures() {
+        // skin1's tables re-baked at the shipped budget equal the shipped ones within the
+        // Monte Carlo's noise (the bake is deterministic, so on the machine that baked them
+        // they are identical), and a quick bake's reflectance agrees within its own noise.
+        let shipped = bake::shipped(&SKIN1).expect("shipped skin1 tables");
+        let again = measure(&SKIN1, bake::DEFAULT_BUDGET, 2);
+        assert_eq!(again.edges, shipped.edges);
+        for (k, (a, b)) in again.mass.iter().zip(&shipped.mass).enumerate() {
+            for c in 0..3 {
+                assert!((a[c] - b[c]).abs() <= 1e-3 * b[c] + 1e-9, "ring {k} ch{c}");
+            }
+        }
+        let close = |a: &[[f64; 3]], b: &[[f64; 3]], tol: f64| {
+            a.iter()
+                .flatten()
+                .zip(b.iter().flatten())
+                .all(|(x, y)| (x - y).abs() <= tol)
+        };
+        assert!(close(&again.oblique, &shipped.oblique, 1e-3));
+        assert!(close(&again.shift, &shipped.shift, 1e-3));
+        assert!(close(&again.slab, &shipped.slab, 1e-4));
+        let quick = quick(&SKIN1).reflectance();
+        let full = shipped.reflectance();
+        for c in 0..3 {
+            assert!(
+                (quick[c] - full[c]).abs() < 0.05 * full[c],
+                "ch{c}: {quick:?} vs {full:?}"
+            );
+        }
+        // The bytes round-trip, and tables for another material are refused.
+        let bytes = shipped.to_bytes(&SKIN1, &bake::DEFAULT_BUDGET);
+        assert_eq!(
+            Bake::from_bytes(&bytes, &SKIN1, &bake::DEFAULT_BUDGET),
+            Some(shipped)
+        );
+        let other = acceptance_material(&SKIN1);
+        assert_eq!(
+            Bake::from_bytes(&bytes, &other, &bake::DEFAULT_BUDGET),
+            None
+        );
+    }
+}
