@@ -5,6 +5,7 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use crate::cmd::args::check_out_dir;
+use crate::cmd::progress::Progress;
 use dermis_core::reference;
 use dermis_core::shading::bake;
 use dermis_core::shading::material::PRESETS;
@@ -24,21 +25,35 @@ pub fn run(args: LutArgs) -> Result<(), String> {
     check_out_dir(&args.out)?;
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
     let budget = bake::DEFAULT_BUDGET;
-    let materials = PRESETS
+    let materials: Vec<_> = PRESETS
         .iter()
-        .flat_map(|m| [*m, reference::acceptance_material(m)]);
-    for m in materials {
-        let path = args.out.join(preintegrated::file_name(&m));
+        .flat_map(|m| [*m, reference::acceptance_material(m)])
+        .collect();
+    eprintln!(
+        "lut: {} tables into {} ({threads} threads; about a minute each on 2 cores)",
+        materials.len(),
+        args.out.display()
+    );
+    // Two steps per table: the Monte Carlo measurement, then the LUT integration.
+    let mut progress = Progress::new("lut", 2 * materials.len() as u64);
+    for m in &materials {
+        let path = args.out.join(preintegrated::file_name(m));
         let start = Instant::now();
-        let lut =
-            preintegrated::bake_lut(&bake::measure(&m, budget, threads), &m, &budget, threads);
-        std::fs::write(&path, lut.to_bytes(&m, &budget))
+        progress.begin(&format!("{} η={}: Monte Carlo", m.name, m.eta));
+        let measured = bake::measure(m, budget, threads);
+        progress.step(&format!("{} η={}: LUT", m.name, m.eta));
+        let lut = preintegrated::bake_lut(&measured, m, &budget, threads);
+        std::fs::write(&path, lut.to_bytes(m, &budget))
             .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-        println!(
-            "{} ({:.0} s)",
-            path.display(),
-            start.elapsed().as_secs_f64()
-        );
+        progress.step(&format!("{} η={}: written", m.name, m.eta));
+        progress.suspend(|| {
+            println!(
+                "{} ({:.0} s)",
+                path.display(),
+                start.elapsed().as_secs_f64()
+            )
+        });
     }
+    progress.finish();
     Ok(())
 }

@@ -158,7 +158,7 @@ fn first_line(s: &str) -> String {
 
 /// Writes every shader's two stages into `dir`; returns the names written.
 pub fn write_spirv(dir: &Path) -> Result<Vec<String>, String> {
-    std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
+    crate::cmd::args::check_out_dir(dir)?;
     let mut names = Vec::new();
     for (name, src) in sources()? {
         let (vert, frag) = to_spirv(&name, &src)?;
