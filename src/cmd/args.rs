@@ -336,6 +336,38 @@ mod tests {
         assert!(e.contains("minimum of 1"), "{e}");
     }
 
+    /// A missing parent is made (the command then writes there); one that cannot be made, a
+    /// file in the way, a directory as the file or the wrong extension is refused.
+    #[test]
+    fn output_places() {
+        let dir = std::env::temp_dir().join(format!("dermis-args-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        let nested = dir.join("a/b/x.png");
+        check_out_file(&nested, Some("png")).unwrap();
+        assert!(dir.join("a/b").is_dir());
+        assert!(
+            !nested.exists(),
+            "the check writes nothing but its probe, removed"
+        );
+        std::fs::write(dir.join("f"), b"").unwrap();
+        for (path, needle) in [
+            (dir.join("f/x.png"), "f"),
+            (dir.join("a"), "use .png"),
+            (dir.join("x.jpg"), "use .png"),
+        ] {
+            let e = check_out_file(&path, Some("png")).unwrap_err();
+            assert!(e.contains(needle), "{}: {e}", path.display());
+        }
+        assert!(check_out_file(&dir.join("a"), None)
+            .unwrap_err()
+            .contains("is a directory"));
+        assert!(check_out_dir(&dir.join("f"))
+            .unwrap_err()
+            .contains("not a directory"));
+        assert!(check_out_dir(Path::new("/proc/dermis-no")).is_err());
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
     #[test]
     fn negatives_valid_where_they_mean_something() {
         assert_eq!(parse_g("-0.5"), Ok(-0.5));
