@@ -19,7 +19,7 @@ use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoop};
 use winit::keyboard::Key;
 use winit::window::{Window, WindowId};
 
-use crate::cli::WindowArgs;
+use crate::cli::{DemoArgs, GameArgs, WindowArgs};
 use crate::demo::{Demo, DemoFrame};
 
 /// What the window shows.
@@ -59,8 +59,8 @@ pub fn settings_path() -> Option<PathBuf> {
     Some(base.join("dermis").join("settings.txt"))
 }
 
-pub fn run_game(args: WindowArgs) -> Result<(), String> {
-    let assets = SceneAssets::load(&crate::paths::assets_dir(), args.model.as_deref())
+pub fn run_game(args: GameArgs) -> Result<(), String> {
+    let assets = SceneAssets::load(&crate::paths::assets_dir(), args.window.model.as_deref())
         .map_err(|e| e.to_string())?;
     let path = args.settings.clone().or_else(settings_path);
     let mut session = Session::new(&assets.character, args.seed, path, args.autoplay);
@@ -68,7 +68,7 @@ pub fn run_game(args: WindowArgs) -> Result<(), String> {
         session.settings.set_shading_model(m);
     }
     run(
-        args,
+        args.window,
         Mode::Game {
             session: Box::new(session),
             assets: Box::new(assets),
@@ -77,18 +77,15 @@ pub fn run_game(args: WindowArgs) -> Result<(), String> {
     )
 }
 
-pub fn run_demo(args: WindowArgs) -> Result<(), String> {
-    let shading = args
-        .shading
-        .unwrap_or(dermis_core::shading::ShadingModel::Oss);
+pub fn run_demo(args: DemoArgs) -> Result<(), String> {
     let demo = Demo::load(
         &crate::paths::assets_dir(),
-        args.model.as_deref(),
-        shading,
+        args.window.model.as_deref(),
+        args.shading,
         args.material,
     )?;
     run(
-        args,
+        args.window,
         Mode::Demo {
             demo: Box::new(demo),
             renderer: None,

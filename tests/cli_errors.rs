@@ -113,7 +113,7 @@ fn profile_bad_input() {
     for (edges, needle) in [
         ("0,2,1", "increasing"),
         ("0,1,1", "increasing"),
-        ("-1,2", "≥ 0"),
+        ("-1,2", "out of range"),
         ("0,nan", "finite"),
         ("5", "at least 2"),
         ("0,x", "x"),
@@ -248,7 +248,7 @@ fn output_paths_checked_first() {
             &["bench", "frame", "--out", "/proc/dermis-no/b.json"],
             "dermis-no",
         ),
-        (&["bench", "frame", "--out", a_dir], "directory"),
+        (&["bench", "frame", "--out", a_dir], "use .json"),
         (&["--frames", "1", "--screenshot", jpg], "use .png"),
         (
             &["--frames", "1", "--screenshot", "/proc/dermis-no/s.png"],

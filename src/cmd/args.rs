@@ -1,10 +1,13 @@
-//! Argument checks shared by every command: clap value parsers for numeric flags (finite, in
-//! a sane range, so nothing is sized from an absurd value), a cap for preallocations sized
-//! from them, and the output-path check every command runs before it starts its work.
+//! Argument checks shared by every command: the clap value parsers of every numeric flag
+//! (finite, in a sane range, so nothing is sized from an absurd value; negative values reach
+//! them because every numeric flag is declared with `allow_hyphen_values`, so `--g -0.5` is a
+//! value and `--seed -1` gets the range message, not clap's "unexpected argument"), a cap for
+//! preallocations sized from them, and the output-path checks every command runs before it
+//! starts its work.
 
-use std::fmt::Display;
 use std::path::Path;
-use std::str::FromStr;
+
+use glam::Vec3;
 
 /// Longest run (`soak --seconds`), s: one day.
 pub const MAX_SECONDS: f64 = 86_400.0;
@@ -18,6 +21,28 @@ pub const BENCH_FRAMES: (usize, usize) = (10, 100_000);
 pub const ROUNDS: (usize, usize) = (2, 1000);
 /// Frame rates accepted (`play --fps`, `soak --target-fps`).
 pub const FPS: (f64, f64) = (1.0, 1000.0);
+/// Image sides accepted (`--size WxH`), pixels.
+pub const SIDE: (u64, u64) = (1, 8192);
+/// Largest light coordinate (`render --light`), m.
+pub const MAX_COORD_M: f64 = 1e4;
+/// Largest clip or vertex index (the model decides what exists).
+pub const MAX_INDEX: u64 = u32::MAX as u64;
+/// Photons per channel and geometry (`sss --photons`).
+pub const SSS_PHOTONS: (u64, u64) = (1000, 100_000_000);
+/// Photons per channel and scene (`reference --photons`).
+pub const REFERENCE_PHOTONS: (u64, u64) = (1000, 1_000_000_000);
+/// Worker threads (`reference --threads`).
+pub const THREADS: (u64, u64) = (1, 1024);
+/// Relative index of refraction (`--eta`).
+pub const ETA: (f64, f64) = (1.0, 3.0);
+/// Henyey–Greenstein anisotropy (`--g`).
+pub const G: (f64, f64) = (-0.99, 0.99);
+/// Point-light heights (`profile --light-height-mm`), mm.
+pub const LIGHT_HEIGHT_MM: (f64, f64) = (0.01, 1000.0);
+/// Largest annulus edge (`profile --edges-mm`), mm.
+pub const MAX_RADIUS_MM: f64 = 5000.0;
+/// Window surfaces of the `surfaces` self-test.
+pub const SURFACES: (u64, u64) = (1, 1000);
 /// Most elements preallocated for per-frame records; longer runs grow the vectors.
 pub const PREALLOC_CAP: usize = 1 << 18;
 
@@ -26,42 +51,75 @@ pub fn prealloc(n: u64) -> usize {
     usize::try_from(n).unwrap_or(usize::MAX).min(PREALLOC_CAP)
 }
 
-/// An integer in `min..=max`; the error states the bound that was broken.
-pub fn int_in<T>(s: &str, min: T, max: T) -> Result<T, String>
-where
-    T: FromStr + PartialOrd + Display + Copy,
-{
+/// A whole number in `min..=max`; the error states the bound that was broken. Written as
+/// digits or as a number with an exponent (`1e6`); a negative value, NaN, an infinity, a
+/// fraction or a word gets its own message, never the standard library's "invalid digit".
+pub fn int_in<T: TryFrom<u64>>(s: &str, min: u64, max: u64) -> Result<T, String> {
     let t = s.trim();
-    match t.parse::<T>() {
-        Ok(v) if v < min => Err(format!("{t} is below the minimum of {min}")),
-        Ok(v) if v > max => Err(format!("{t} is above the maximum of {max}")),
-        Ok(v) => Ok(v),
-        Err(_) if t.starts_with('-') => Err(format!("{t} is below the minimum of {min}")),
-        Err(_) if !t.is_empty() && t.bytes().all(|b| b.is_ascii_digit()) => {
-            Err(format!("{t} is above the maximum of {max}"))
-        }
-        Err(_) => Err(format!("`{t}` is not a whole number in {min}..={max}")),
+    let below = || format!("{t} is below the minimum of {min}");
+    let above = || format!("{t} is above the maximum of {max}");
+    let v = match t.parse::<u64>() {
+        Ok(v) => v,
+        Err(_) => match t.parse::<f64>() {
+            Ok(f) if f.is_nan() => {
+                return Err(format!("{t} is not a whole number in {min}..={max}"))
+            }
+            Ok(f) if f < min as f64 => return Err(below()),
+            Ok(f) if f > max as f64 => return Err(above()),
+            Ok(f) if f.fract() == 0.0 => f as u64,
+            Ok(_) => return Err(format!("{t} is not a whole number in {min}..={max}")),
+            // Digits beyond what f64 parses do not exist; a sign and digits do.
+            Err(_) => return Err(format!("`{t}` is not a whole number in {min}..={max}")),
+        },
+    };
+    if v < min {
+        return Err(below());
     }
+    if v > max {
+        return Err(above());
+    }
+    T::try_from(v).map_err(|_| above())
 }
 
-/// A finite number in `[min, max]` (`(min, max]` when `open_min`), with `unit` for messages.
+/// A finite number in `[min, max]` (`(min, max]` when `open_min`); `unit` (may be empty)
+/// follows the number in messages.
 pub fn float_in(s: &str, min: f64, open_min: bool, max: f64, unit: &str) -> Result<f64, String> {
     let t = s.trim();
-    let v: f64 = t
-        .parse()
-        .map_err(|_| format!("`{t}` is not a number of {unit}"))?;
+    let of = if unit.is_empty() {
+        String::new()
+    } else {
+        format!(" of {unit}")
+    };
     let range = if open_min {
         format!("greater than {min} and at most {max}")
     } else {
         format!("between {min} and {max}")
     };
+    let v: f64 = t
+        .parse()
+        .map_err(|_| format!("`{t}` is not a number{of} ({range})"))?;
     if !v.is_finite() {
-        return Err(format!("{t} is not a finite number of {unit} ({range})"));
+        return Err(format!("{t} is not a finite number{of} ({range})"));
     }
+    let spaced = if unit.is_empty() {
+        String::new()
+    } else {
+        format!(" {unit}")
+    };
     if v < min || (open_min && v == min) || v > max {
-        return Err(format!("{t} {unit} is out of range ({range})"));
+        return Err(format!("{t}{spaced} is out of range ({range})"));
     }
     Ok(v)
+}
+
+/// A seed: any whole number from 0 to 2⁶⁴ − 1.
+pub fn parse_seed(s: &str) -> Result<u64, String> {
+    int_in(s, 0, u64::MAX)
+}
+
+/// A clip or vertex index, 0..=[`MAX_INDEX`] (the model says which exist).
+pub fn parse_index(s: &str) -> Result<usize, String> {
+    int_in(s, 0, MAX_INDEX)
 }
 
 /// Wall-clock duration of a run: finite, > 0, at most [`MAX_SECONDS`].
@@ -97,12 +155,78 @@ pub fn parse_play_frames(s: &str) -> Result<u64, String> {
 
 /// Frames per block of a bench's CPU timing, in [`BENCH_FRAMES`].
 pub fn parse_bench_frames(s: &str) -> Result<usize, String> {
-    int_in(s, BENCH_FRAMES.0, BENCH_FRAMES.1)
+    int_in(s, BENCH_FRAMES.0 as u64, BENCH_FRAMES.1 as u64)
 }
 
 /// Rounds of a paired bench, in [`ROUNDS`].
 pub fn parse_rounds(s: &str) -> Result<usize, String> {
-    int_in(s, ROUNDS.0, ROUNDS.1)
+    int_in(s, ROUNDS.0 as u64, ROUNDS.1 as u64)
+}
+
+/// `sss --photons`, in [`SSS_PHOTONS`].
+pub fn parse_sss_photons(s: &str) -> Result<u64, String> {
+    int_in(s, SSS_PHOTONS.0, SSS_PHOTONS.1)
+}
+
+/// `reference --photons`, in [`REFERENCE_PHOTONS`].
+pub fn parse_reference_photons(s: &str) -> Result<u64, String> {
+    int_in(s, REFERENCE_PHOTONS.0, REFERENCE_PHOTONS.1)
+}
+
+/// Worker threads, in [`THREADS`].
+pub fn parse_threads(s: &str) -> Result<usize, String> {
+    int_in(s, THREADS.0, THREADS.1)
+}
+
+/// `surfaces --count`, in [`SURFACES`].
+pub fn parse_surfaces(s: &str) -> Result<u32, String> {
+    int_in(s, SURFACES.0, SURFACES.1)
+}
+
+/// A relative index of refraction, in [`ETA`].
+pub fn parse_eta(s: &str) -> Result<f64, String> {
+    float_in(s, ETA.0, false, ETA.1, "")
+}
+
+/// A Henyey–Greenstein anisotropy, in [`G`] (negative: back-scattering).
+pub fn parse_g(s: &str) -> Result<f64, String> {
+    float_in(s, G.0, false, G.1, "")
+}
+
+/// A point light's height above the surface, in [`LIGHT_HEIGHT_MM`].
+pub fn parse_light_height_mm(s: &str) -> Result<f64, String> {
+    float_in(s, LIGHT_HEIGHT_MM.0, false, LIGHT_HEIGHT_MM.1, "mm")
+}
+
+/// One annulus edge, 0..=[`MAX_RADIUS_MM`] (the list's order is checked by `profile`).
+pub fn parse_edge_mm(s: &str) -> Result<f64, String> {
+    float_in(s, 0.0, false, MAX_RADIUS_MM, "mm")
+}
+
+/// An image size `WxH`, each side in [`SIDE`].
+pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    let (w, h) = s
+        .split_once(['x', 'X'])
+        .ok_or_else(|| format!("size `{s}` is not WxH"))?;
+    let side = |name: &str, v: &str| {
+        int_in::<u32>(v, SIDE.0, SIDE.1).map_err(|e| format!("{name} in `{s}`: {e}"))
+    };
+    Ok((side("width", w)?, side("height", h)?))
+}
+
+/// A position `X,Y,Z` in metres, each coordinate finite and within ±[`MAX_COORD_M`]
+/// (negative coordinates are positions like any other).
+pub fn parse_vec3(s: &str) -> Result<Vec3, String> {
+    let parts: Vec<&str> = s.split(',').collect();
+    let [x, y, z] = parts[..] else {
+        return Err(format!("`{s}` is not X,Y,Z"));
+    };
+    let c = |v: &str| {
+        float_in(v, -MAX_COORD_M, false, MAX_COORD_M, "m")
+            .map(|v| v as f32)
+            .map_err(|e| format!("in `{s}`: {e}"))
+    };
+    Ok(Vec3::new(c(x)?, c(y)?, c(z)?))
 }
 
 /// `--shading` help: `what`, then every model name from the registry.
@@ -185,5 +309,78 @@ mod tests {
         assert!(e.contains("minimum of 2"), "{e}");
         assert_eq!(prealloc(u64::MAX), PREALLOC_CAP);
         assert_eq!(prealloc(7), 7);
+    }
+
+    #[test]
+    fn whole_numbers_in_every_spelling() {
+        assert_eq!(parse_sss_photons("1e6"), Ok(1_000_000));
+        assert_eq!(parse_seed("0"), Ok(0));
+        assert_eq!(parse_seed("18446744073709551615"), Ok(u64::MAX));
+        for (bad, needle) in [
+            ("-1", "below the minimum of 0"),
+            ("-inf", "below the minimum of 0"),
+            ("inf", "above the maximum"),
+            ("1e30", "above the maximum"),
+            ("99999999999999999999999", "above the maximum"),
+            ("NaN", "not a whole number"),
+            ("2.5", "not a whole number"),
+            ("many", "`many` is not a whole number"),
+            ("", "not a whole number"),
+        ] {
+            let e = parse_seed(bad).unwrap_err();
+            assert!(e.contains(needle), "{bad}: {e}");
+        }
+        let e = parse_sss_photons("1e12").unwrap_err();
+        assert!(e.contains("above the maximum of 100000000"), "{e}");
+        let e = parse_threads("-1").unwrap_err();
+        assert!(e.contains("minimum of 1"), "{e}");
+    }
+
+    /// A missing parent is made (the command then writes there); one that cannot be made, a
+    /// file in the way, a directory as the file or the wrong extension is refused.
+    #[test]
+    fn output_places() {
+        let dir = std::env::temp_dir().join(format!("dermis-args-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        let nested = dir.join("a/b/x.png");
+        check_out_file(&nested, Some("png")).unwrap();
+        assert!(dir.join("a/b").is_dir());
+        assert!(
+            !nested.exists(),
+            "the check writes nothing but its probe, removed"
+        );
+        std::fs::write(dir.join("f"), b"").unwrap();
+        for (path, needle) in [
+            (dir.join("f/x.png"), "f"),
+            (dir.join("a"), "use .png"),
+            (dir.join("x.jpg"), "use .png"),
+        ] {
+            let e = check_out_file(&path, Some("png")).unwrap_err();
+            assert!(e.contains(needle), "{}: {e}", path.display());
+        }
+        assert!(check_out_file(&dir.join("a"), None)
+            .unwrap_err()
+            .contains("is a directory"));
+        assert!(check_out_dir(&dir.join("f"))
+            .unwrap_err()
+            .contains("not a directory"));
+        assert!(check_out_dir(Path::new("/proc/dermis-no")).is_err());
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn negatives_valid_where_they_mean_something() {
+        assert_eq!(parse_g("-0.5"), Ok(-0.5));
+        assert!(parse_g("-1").unwrap_err().contains("out of range"));
+        assert_eq!(parse_vec3("-0.5,2,1"), Ok(Vec3::new(-0.5, 2.0, 1.0)));
+        for bad in ["-1e5,2,1", "nan,0,0", "inf,0,0", "1,2", "x,y,z"] {
+            assert!(parse_vec3(bad).is_err(), "{bad}");
+        }
+        assert_eq!(parse_size("640x360"), Ok((640, 360)));
+        let e = parse_size("-1x10").unwrap_err();
+        assert!(e.contains("width") && e.contains("minimum of 1"), "{e}");
+        assert!(parse_size("10x99999").unwrap_err().contains("maximum"));
+        assert!(parse_eta("-1.4").is_err());
+        assert!(parse_edge_mm("-1").is_err());
     }
 }

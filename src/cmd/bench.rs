@@ -29,13 +29,13 @@ pub enum BenchKind {
     Frame {
         /// Rounds of GPU timing, at least 2 (each round times every model once, in rotating
         /// order, then the blob-shadow models off and on, in alternating order).
-        #[arg(long, default_value_t = 30, value_parser = parse_rounds, allow_negative_numbers = true)]
+        #[arg(long, default_value_t = 30, value_parser = parse_rounds, allow_hyphen_values = true)]
         rounds: usize,
         /// Frames for the CPU timing (at least 10).
-        #[arg(long, default_value_t = 300, value_parser = parse_bench_frames, allow_negative_numbers = true)]
+        #[arg(long, default_value_t = 300, value_parser = parse_bench_frames, allow_hyphen_values = true)]
         frames: usize,
-        /// Write the JSON report here (it is also printed with --json; checked before the
-        /// work starts).
+        /// Write the JSON report to this `.json` file (it is also printed with --json;
+        /// checked before the work starts).
         #[arg(long)]
         out: Option<PathBuf>,
         /// Print JSON instead of the table.
@@ -68,7 +68,7 @@ fn frame(
     print_json: bool,
 ) -> Result<(), String> {
     if let Some(path) = &out {
-        check_out_file(path, None)?;
+        check_out_file(path, Some("json"))?;
     }
     let start = Instant::now();
     // Steps: first frame, close-up, the CPU frames (in eighths), the GPU rounds, the blob

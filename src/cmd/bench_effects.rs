@@ -9,19 +9,18 @@ use dermis_core::shading::ShadingModel;
 use serde_json::{json, Value};
 
 use crate::cli::parse_model;
-use crate::cmd::args::{parse_bench_frames, parse_rounds, shading_help, BENCH_FRAMES, ROUNDS};
+use crate::cmd::args::{parse_bench_frames, parse_rounds, parse_size, shading_help};
 use crate::cmd::progress::Progress;
-use crate::cmd::render::parse_size;
 use crate::cmd::stats::ratio_ci;
 
 /// `dermis bench effects` arguments.
 #[derive(clap::Args, Debug)]
 pub struct EffectsArgs {
     /// Rounds (at least 2); each round plays `frames` frames in each mode, in rotating order.
-    #[arg(long, default_value_t = 10, value_parser = parse_rounds, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 10, value_parser = parse_rounds, allow_hyphen_values = true)]
     pub rounds: usize,
     /// Frames per mode per round (at least 10).
-    #[arg(long, default_value_t = 60, value_parser = parse_bench_frames, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 60, value_parser = parse_bench_frames, allow_hyphen_values = true)]
     pub frames: usize,
     #[arg(
         long,
@@ -31,7 +30,7 @@ pub struct EffectsArgs {
     )]
     pub shading: ShadingModel,
     /// Frame size WxH.
-    #[arg(long, default_value = "1280x720", value_parser = parse_size)]
+    #[arg(long, default_value = "1280x720", value_parser = parse_size, allow_hyphen_values = true)]
     pub size: (u32, u32),
     /// Print JSON instead of the table.
     #[arg(long)]
@@ -43,14 +42,9 @@ pub struct EffectsArgs {
 /// (off: always the chosen model; coverage + light; coverage + light + frame-time governor),
 /// each frame's GPU pass timed and waited for (so blocks do not overlap on the GPU).
 pub fn run(args: EffectsArgs) -> Result<(), String> {
-    if !(ROUNDS.0..=ROUNDS.1).contains(&args.rounds)
-        || !(BENCH_FRAMES.0..=BENCH_FRAMES.1).contains(&args.frames)
-    {
-        return Err(format!(
-            "--rounds {} / --frames {} out of range ({}..={} / {}..={})",
-            args.rounds, args.frames, ROUNDS.0, ROUNDS.1, BENCH_FRAMES.0, BENCH_FRAMES.1
-        ));
-    }
+    // Steps: the set-up (GPU, pipelines, warm-up), then each block.
+    let mut progress = Progress::new("bench effects", 1 + 3 * args.rounds as u64);
+    progress.begin("GPU device, pipelines, warm-up");
     let assets = SceneAssets::load(&crate::paths::assets_dir(), None).map_err(|e| e.to_string())?;
     let gpu = Gpu::headless().map_err(|e| e.to_string())?;
     let (w, h) = args.size;
@@ -101,7 +95,7 @@ pub fn run(args: EffectsArgs) -> Result<(), String> {
         play(k, 30, false)?;
     }
     let (rounds, n) = (args.rounds, args.frames);
-    let mut progress = Progress::new("bench effects", 3 * rounds as u64);
+    progress.step("warm-up");
     for r in 0..rounds {
         for j in 0..3 {
             let k = (j + r) % 3;

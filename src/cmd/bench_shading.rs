@@ -14,6 +14,7 @@
 
 use std::path::PathBuf;
 
+use crate::cmd::args::{check_out_dir, parse_rounds};
 use crate::cmd::progress::Progress;
 use dermis_core::anim::Pose;
 use dermis_core::asset::shapes::plane_model;
@@ -36,8 +37,8 @@ pub struct ShadingArgs {
     /// Output directory (shading.md, shading.json, pareto.png, governor-front.txt).
     #[arg(long)]
     pub out: PathBuf,
-    /// Rounds of GPU timing (each round times every model once, in rotating order).
-    #[arg(long, default_value_t = 20)]
+    /// Rounds of GPU timing, 2..=1000 (each round times every model once, in rotating order).
+    #[arg(long, default_value_t = 20, value_parser = parse_rounds, allow_hyphen_values = true)]
     pub rounds: usize,
     /// Mali cycle counts: `tools/mali/cycles.sh` JSON over `dermis shaders --spirv DIR`
     /// (default: docs/results/mali-cycles.json; the columns stay empty if that is missing).
@@ -45,8 +46,6 @@ pub struct ShadingArgs {
     pub mali: Option<PathBuf>,
 }
 
-/// Accepted `--rounds` (a CI needs two).
-pub const ROUNDS: (usize, usize) = (2, 1000);
 /// Target of the cost scene.
 pub const COST_SIZE: (u32, u32) = (1280, 720);
 /// Width of the cost scene's view on the skin (mm): a close-up, 0.2 mm per pixel.
@@ -57,16 +56,10 @@ pub const GPUS: [&str; 2] = ["G52", "G57"];
 /// The acceptance materials with their reference sets.
 type References = Vec<(Material, ReferenceSet)>;
 
-/// The checks that need no GPU: rounds, output directory, reference files, Mali file.
+/// The checks that need no GPU: output directory, reference files, Mali file (`--rounds`
+/// is range-checked by its parser).
 fn prepare(args: &ShadingArgs) -> Result<(References, Option<Value>), String> {
-    if !(ROUNDS.0..=ROUNDS.1).contains(&args.rounds) {
-        return Err(format!(
-            "--rounds {} out of range ({}..={})",
-            args.rounds, ROUNDS.0, ROUNDS.1
-        ));
-    }
-    std::fs::create_dir_all(&args.out)
-        .map_err(|e| format!("cannot create {}: {e}", args.out.display()))?;
+    check_out_dir(&args.out)?;
     let dir = ground_truth::default_dir();
     let sets = ground_truth::acceptance_materials()
         .into_iter()
@@ -92,13 +85,15 @@ fn prepare(args: &ShadingArgs) -> Result<(References, Option<Value>), String> {
 
 pub fn run(args: ShadingArgs) -> Result<(), String> {
     let (sets, mali) = prepare(&args)?;
-    let gpu = Gpu::headless().map_err(|e| e.to_string())?;
     let models = ShadingModel::ALL;
     let scenes: usize = sets.iter().map(|(_, s)| s.entries.len()).sum();
     let mut progress = Progress::new(
         "bench shading",
-        (scenes * models.len() + args.rounds + 2) as u64,
+        (1 + scenes * models.len() + args.rounds + 2) as u64,
     );
+    progress.begin("GPU device");
+    let gpu = Gpu::headless().map_err(|e| e.to_string())?;
+    progress.step("GPU device");
 
     // Accuracy: per model, every scene of every material.
     let mut scores: Vec<Vec<SceneScore>> = models.iter().map(|_| Vec::new()).collect();

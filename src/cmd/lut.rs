@@ -6,6 +6,7 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use crate::cmd::args::check_out_dir;
+use crate::cmd::progress::Progress;
 use dermis_core::shading::material::PRESETS;
 use dermis_core::shading::{bake, preintegrated};
 use dermis_measure::bake::{measure, threads};
@@ -28,30 +29,46 @@ pub fn run(args: LutArgs) -> Result<(), String> {
     check_out_dir(&args.out)?;
     let threads = threads();
     let budget = bake::DEFAULT_BUDGET;
-    let materials = PRESETS
+    let materials: Vec<_> = PRESETS
         .iter()
-        .flat_map(|m| [*m, ground_truth::acceptance_material(m)]);
-    let write = |path: PathBuf, bytes: Vec<u8>, start: Instant| {
+        .flat_map(|m| [*m, ground_truth::acceptance_material(m)])
+        .collect();
+    let steps = if args.tables_only { 1 } else { 2 };
+    eprintln!(
+        "lut: {} materials into {} ({threads} threads; the sphere LUTs about a minute each on 2 cores)",
+        materials.len(),
+        args.out.display()
+    );
+    // Per material: the tables' Monte Carlo, then (unless --tables-only) the sphere LUT.
+    let mut progress = Progress::new("lut", steps * materials.len() as u64);
+    let write = |path: PathBuf, bytes: Vec<u8>, start: Instant, progress: &mut Progress| {
         std::fs::write(&path, bytes)
             .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-        println!(
-            "{} ({:.1} s)",
-            path.display(),
-            start.elapsed().as_secs_f64()
-        );
+        progress.suspend(|| {
+            println!(
+                "{} ({:.1} s)",
+                path.display(),
+                start.elapsed().as_secs_f64()
+            )
+        });
         Ok::<(), String>(())
     };
-    for m in materials {
+    for m in &materials {
         let start = Instant::now();
-        let tables = measure(&m, budget, threads);
-        let path = args.out.join(bake::file_name(&m));
-        write(path, tables.to_bytes(&m, &budget), start)?;
+        progress.begin(&format!("{} η={}: tables (Monte Carlo)", m.name, m.eta));
+        let tables = measure(m, budget, threads);
+        let path = args.out.join(bake::file_name(m));
+        write(path, tables.to_bytes(m, &budget), start, &mut progress)?;
+        progress.step(&format!("{} η={}: tables written", m.name, m.eta));
         if !args.tables_only {
             let start = Instant::now();
-            let lut = lut::bake_lut(&tables, &m, &budget, threads);
-            let path = args.out.join(preintegrated::file_name(&m));
-            write(path, lut.to_bytes(&m, &budget), start)?;
+            progress.begin(&format!("{} η={}: sphere LUT", m.name, m.eta));
+            let lut = lut::bake_lut(&tables, m, &budget, threads);
+            let path = args.out.join(preintegrated::file_name(m));
+            write(path, lut.to_bytes(m, &budget), start, &mut progress)?;
+            progress.step(&format!("{} η={}: LUT written", m.name, m.eta));
         }
     }
+    progress.finish();
     Ok(())
 }

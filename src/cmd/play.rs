@@ -11,9 +11,10 @@ use dermis_core::shading::ShadingModel;
 use serde_json::json;
 
 use crate::cli::parse_model;
-use crate::cmd::args::{check_out_dir, parse_fps, parse_play_frames, prealloc, shading_help};
+use crate::cmd::args::{
+    check_out_dir, parse_fps, parse_play_frames, parse_seed, parse_size, prealloc, shading_help,
+};
 use crate::cmd::progress::Progress;
-use crate::cmd::render::parse_size;
 use crate::cmd::stats::{median, percentile};
 use dermis_core::heap::allocations;
 
@@ -23,18 +24,18 @@ pub struct PlayArgs {
     #[arg(long)]
     pub autoplay: bool,
     /// Frames to run, at least 121 (120 warm-up frames plus one measured).
-    #[arg(long, default_value_t = 600, value_parser = parse_play_frames, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 600, value_parser = parse_play_frames, allow_hyphen_values = true)]
     pub frames: u64,
     /// Seed of the run.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, value_parser = parse_seed, allow_hyphen_values = true)]
     pub seed: u64,
     #[arg(long, value_parser = parse_model, help = shading_help("Shading model of the character"))]
     pub shading: Option<ShadingModel>,
     /// Frame size WxH.
-    #[arg(long, default_value = "1280x720", value_parser = parse_size)]
+    #[arg(long, default_value = "1280x720", value_parser = parse_size, allow_hyphen_values = true)]
     pub size: (u32, u32),
     /// Simulated frame rate, 1..=1000 (the game's fixed step makes results independent of it).
-    #[arg(long, default_value_t = 60.0, value_parser = parse_fps, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 60.0, value_parser = parse_fps, allow_hyphen_values = true)]
     pub fps: f64,
     /// Save PNGs of the main, play and game-over screens here.
     #[arg(long)]
@@ -51,6 +52,8 @@ pub fn run(args: PlayArgs) -> Result<(), String> {
     if let Some(dir) = &args.screenshots {
         check_out_dir(dir)?;
     }
+    let mut progress = Progress::new("play", args.frames);
+    progress.begin("GPU device and pipelines");
     let assets = SceneAssets::load(&crate::paths::assets_dir(), None).map_err(|e| e.to_string())?;
     let gpu = Gpu::headless().map_err(|e| e.to_string())?;
     let (w, h) = args.size;
@@ -76,9 +79,8 @@ pub fn run(args: PlayArgs) -> Result<(), String> {
     let mut live_changes = 0u64;
     let mut shots: Vec<(&str, bool)> = vec![("main", false), ("play", false), ("game-over", false)];
     let mut play_frames = 0u64;
-    // Every 60th frame, after the frame's measured work (its allocations are counted inside
-    // the driver's frame only).
-    let mut progress = Progress::new("play", args.frames);
+    // Progress every 60th frame, after the frame's measured work (its allocations are counted
+    // inside the driver's frame only).
     for frame in 0..args.frames {
         let mut shoot = None;
         // After the frame's passes: copy out the first frame of each screen not yet saved.

@@ -12,11 +12,8 @@ use dermis_measure::scenes::SceneRenderer;
 use serde_json::{json, Map, Value};
 
 use crate::cli::{parse_material, parse_model};
-
-/// Light heights accepted (mm).
-pub const H_RANGE_MM: (f64, f64) = (0.01, 1000.0);
-/// Largest outer annulus radius accepted (mm).
-pub const MAX_RADIUS_MM: f64 = 5000.0;
+use crate::cmd::args::{parse_edge_mm, parse_eta, parse_g, parse_light_height_mm, MAX_RADIUS_MM};
+use crate::cmd::progress::Progress;
 /// Annuli of the default edges.
 const DEFAULT_BINS: usize = 24;
 
@@ -31,17 +28,18 @@ pub struct ProfileArgs {
     /// Material preset (skin1 | white-coat).
     #[arg(long, default_value = "skin1", value_parser = parse_material)]
     pub material: Material,
-    /// Relative index of refraction (default: the preset's).
-    #[arg(long, allow_negative_numbers = true)]
+    /// Relative index of refraction, 1..=3 (default: the preset's; another than a shipped
+    /// material's makes the spatial models measure their tables first, ~100 s).
+    #[arg(long, value_parser = parse_eta, allow_hyphen_values = true)]
     pub eta: Option<f64>,
-    /// Henyey–Greenstein anisotropy g.
-    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    /// Henyey–Greenstein anisotropy g, -0.99..=0.99 (not 0: the tables are measured first).
+    #[arg(long, default_value_t = 0.0, value_parser = parse_g, allow_hyphen_values = true)]
     pub g: f64,
-    /// Height of the point light above the surface (mm).
-    #[arg(long, allow_negative_numbers = true)]
+    /// Height of the point light above the surface (mm), 0.01..=1000.
+    #[arg(long, value_parser = parse_light_height_mm, allow_hyphen_values = true)]
     pub light_height_mm: f64,
     /// Annulus edges (mm), comma-separated, ascending, ≥ 0 (default: 24 annuli out to 4H + 20).
-    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
+    #[arg(long, value_delimiter = ',', value_parser = parse_edge_mm, allow_hyphen_values = true)]
     pub edges_mm: Option<Vec<f64>>,
     /// Print JSON: {"edges_mm": [...], "models": {"<name>": {"exitance": [[r, g, b], ...]}}}.
     #[arg(long)]
@@ -57,23 +55,12 @@ pub struct Request {
     pub edges: Vec<f64>,
 }
 
-/// Checks every argument (no GPU work); the message names what is wrong.
+/// Checks the arguments the value parsers cannot (the edges as a list; no GPU work); the
+/// message names what is wrong.
 pub fn validate(args: &ProfileArgs) -> Result<Request, String> {
     let h = args.light_height_mm;
-    if !(h.is_finite() && h >= H_RANGE_MM.0 && h <= H_RANGE_MM.1) {
-        return Err(format!(
-            "--light-height-mm {h} out of range [{}, {}]",
-            H_RANGE_MM.0, H_RANGE_MM.1
-        ));
-    }
     let eta = args.eta.unwrap_or(args.material.eta);
-    if !(eta.is_finite() && (1.0..=3.0).contains(&eta)) {
-        return Err(format!("--eta {eta} out of range [1, 3]"));
-    }
     let g = args.g;
-    if !(g.is_finite() && g.abs() <= 0.99) {
-        return Err(format!("--g {g} out of range [-0.99, 0.99]"));
-    }
     let edges = match &args.edges_mm {
         Some(e) => {
             check_edges(e)?;
@@ -157,17 +144,26 @@ pub fn default_edges(h_mm: f64) -> Vec<f64> {
 /// A model's profile: the exitance per annulus.
 pub type Profile = (ShadingModel, Vec<[f64; 3]>);
 
-/// Renders the profile of every requested model.
-pub fn render(gpu: &Gpu, req: &Request) -> Result<Vec<Profile>, String> {
+/// Renders the profile of every requested model, a step of `progress` each.
+pub fn render(gpu: &Gpu, req: &Request, progress: &mut Progress) -> Result<Vec<Profile>, String> {
     let mut probe = SceneRenderer::new(gpu);
     let scene = Scene::PointLight { h_mm: req.h_mm };
     req.models
         .iter()
-        .map(|&m| {
-            probe
+        .enumerate()
+        .map(|(i, &m)| {
+            // The first render sets the material up, measuring its tables when it has none.
+            if i == 0 {
+                progress.begin(&format!("{} (first: the material's tables)", m.name()));
+            } else {
+                progress.begin(m.name());
+            }
+            let profile = probe
                 .render(gpu, m, &req.material, &scene, &req.edges)
                 .map(|e| (m, e))
-                .map_err(|e| format!("{}: {e}", m.name()))
+                .map_err(|e| format!("{}: {e}", m.name()));
+            progress.step(m.name());
+            profile
         })
         .collect()
 }
@@ -210,8 +206,21 @@ pub fn table(req: &Request, profiles: &[Profile]) -> String {
 
 pub fn run(args: ProfileArgs) -> Result<(), String> {
     let req = validate(&args)?;
+    let shipped = req.material == args.material;
+    if !shipped {
+        eprintln!(
+            "profile: η = {}, g = {} is not a shipped material: the spatial models measure their \
+             tables first (up to ~100 s on 2 cores)",
+            req.material.eta, req.material.g
+        );
+    }
+    // Steps: the GPU, then one per model.
+    let mut progress = Progress::new("profile", 1 + req.models.len() as u64);
+    progress.begin("GPU device");
     let gpu = Gpu::headless().map_err(|e| e.to_string())?;
-    let profiles = render(&gpu, &req)?;
+    progress.step("GPU device");
+    let profiles = render(&gpu, &req, &mut progress)?;
+    progress.finish();
     if args.json {
         println!(
             "{}",

@@ -4,7 +4,7 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use crate::cmd::args::check_out_dir;
+use crate::cmd::args::{check_out_dir, parse_reference_photons, parse_seed, parse_threads};
 use crate::cmd::progress::Progress;
 use dermis_core::shading::material::{Material, SKIN1, WHITE_COAT};
 use dermis_measure::ground_truth::{self, ReferenceSet};
@@ -14,17 +14,18 @@ pub struct ReferenceArgs {
     /// Output directory; writes <material>.json there.
     #[arg(long)]
     pub out: PathBuf,
-    /// Photons per channel and scene (default: per material, see tools/reference/README.md).
-    #[arg(long)]
+    /// Photons per channel and scene, 1000..=1e9 (default: per material, see
+    /// tools/reference/README.md).
+    #[arg(long, value_parser = parse_reference_photons, allow_hyphen_values = true)]
     pub photons: Option<u64>,
     /// skin1 | white-coat | all.
     #[arg(long, default_value = "all")]
     pub material: String,
     /// Seed of the Monte Carlo.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, value_parser = parse_seed, allow_hyphen_values = true)]
     pub seed: u64,
-    /// Worker threads (default: all cores; the results do not depend on it).
-    #[arg(long)]
+    /// Worker threads, 1..=1024 (default: all cores; the results do not depend on it).
+    #[arg(long, value_parser = parse_threads, allow_hyphen_values = true)]
     pub threads: Option<usize>,
 }
 
@@ -51,17 +52,9 @@ fn materials(name: &str) -> Result<Vec<Material>, String> {
 
 pub fn run(args: ReferenceArgs) -> Result<(), String> {
     let mats = materials(&args.material)?;
-    if let Some(p) = args.photons {
-        if !(1000..=1_000_000_000).contains(&p) {
-            return Err(format!("--photons {p} out of range (1000..=1e9)"));
-        }
-    }
-    let threads = match args.threads {
-        Some(0) => return Err("--threads must be at least 1".into()),
-        Some(t) if t > 1024 => return Err(format!("--threads {t} out of range (1..=1024)")),
-        Some(t) => t,
-        None => std::thread::available_parallelism().map_or(1, |n| n.get()),
-    };
+    let threads = args
+        .threads
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
     for m in &mats {
         for (scene, edges) in ground_truth::standard_scenes(m) {
             scene

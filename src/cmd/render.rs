@@ -9,7 +9,10 @@ use dermis_core::still::{Shot, StillRenderer};
 use glam::Vec3;
 
 use crate::cli::{parse_material, parse_model};
-use crate::cmd::args::{check_out_file, parse_time, shading_help};
+use crate::cmd::args::{
+    check_out_file, parse_index, parse_size, parse_time, parse_vec3, shading_help,
+};
+use crate::cmd::progress::Progress;
 
 #[derive(clap::Args, Debug)]
 pub struct RenderArgs {
@@ -26,17 +29,18 @@ pub struct RenderArgs {
     /// glTF character (default: the project's own).
     #[arg(long)]
     pub model: Option<PathBuf>,
-    /// Animation clip index.
-    #[arg(long, default_value_t = 0)]
+    /// Animation clip index (checked against the model before any GPU work).
+    #[arg(long, default_value_t = 0, value_parser = parse_index, allow_hyphen_values = true)]
     pub clip: usize,
     /// Time in the clip (seconds, ≥ 0; clamped to the clip).
-    #[arg(long, default_value = "0", value_parser = parse_time, allow_negative_numbers = true)]
+    #[arg(long, default_value = "0", value_parser = parse_time, allow_hyphen_values = true)]
     pub time: f32,
     /// Image size, WxH.
-    #[arg(long, default_value = "640x360", value_parser = parse_size)]
+    #[arg(long, default_value = "640x360", value_parser = parse_size, allow_hyphen_values = true)]
     pub size: (u32, u32),
-    /// Light position X,Y,Z in metres (the character stands at the origin, 1.75 m tall).
-    #[arg(long, value_parser = parse_vec3)]
+    /// Light position X,Y,Z in metres (the character stands at the origin, 1.75 m tall;
+    /// negative coordinates as they are: `--light -0.5,2,1`).
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
     pub light: Option<Vec3>,
     /// Leave out the props (character only).
     #[arg(long)]
@@ -46,48 +50,24 @@ pub struct RenderArgs {
     pub out: PathBuf,
 }
 
-pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
-    let (w, h) = s
-        .split_once(['x', 'X'])
-        .ok_or_else(|| format!("size `{s}` is not WxH"))?;
-    let w: u32 = w
-        .trim()
-        .parse()
-        .map_err(|_| format!("bad width in `{s}`"))?;
-    let h: u32 = h
-        .trim()
-        .parse()
-        .map_err(|_| format!("bad height in `{s}`"))?;
-    if !(1..=8192).contains(&w) || !(1..=8192).contains(&h) {
-        return Err(format!("size `{s}` out of range (1..=8192 each)"));
-    }
-    Ok((w, h))
-}
-
-pub fn parse_vec3(s: &str) -> Result<Vec3, String> {
-    let v: Vec<f32> = s
-        .split(',')
-        .map(|p| {
-            p.trim()
-                .parse::<f32>()
-                .map_err(|_| format!("`{s}` is not X,Y,Z"))
-        })
-        .collect::<Result<_, _>>()?;
-    match v[..] {
-        [x, y, z] if v.iter().all(|c| c.is_finite() && c.abs() < 1e4) => Ok(Vec3::new(x, y, z)),
-        _ => Err(format!(
-            "`{s}` is not X,Y,Z with finite coordinates below 1e4"
-        )),
-    }
-}
-
 pub fn run(args: RenderArgs) -> Result<(), String> {
     check_out_file(&args.out, Some("png"))?;
     let assets = SceneAssets::load(&crate::paths::assets_dir(), args.model.as_deref())
         .map_err(|e| e.to_string())?;
+    let clips = assets.character.animations.len();
+    if args.clip >= clips.max(1) {
+        return Err(format!(
+            "{}: clip {} out of range (the model has {clips} clips)",
+            assets.character.source, args.clip
+        ));
+    }
+    // Steps: the GPU and pipelines, the frame, the PNG.
+    let mut progress = Progress::new("render", 3);
+    progress.begin("GPU device and pipelines");
     let gpu = Gpu::headless().map_err(|e| e.to_string())?;
     let (w, h) = args.size;
     let mut still = StillRenderer::new(&gpu, &assets, w, h)?;
+    progress.step("GPU device and pipelines");
     let shot = Shot {
         clip: args.clip,
         time: args.time,
@@ -95,8 +75,12 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
         props: !args.no_props,
         ..Shot::new(args.shading, args.material)
     };
+    progress.begin("rendering (material tables baked on first use)");
     let image = still.render(&gpu, &assets, &shot)?;
+    progress.step("rendered");
     image.save_png(&args.out)?;
+    progress.step("saved");
+    progress.finish();
     println!(
         "{}: {} {} {}x{} on {}",
         args.out.display(),

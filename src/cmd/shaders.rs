@@ -166,7 +166,7 @@ fn first_line(s: &str) -> String {
 
 /// Writes every shader's two stages into `dir`; returns the names written.
 pub fn write_spirv(dir: &Path) -> Result<Vec<String>, String> {
-    std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
+    crate::cmd::args::check_out_dir(dir)?;
     let mut names = Vec::new();
     let mut all: Vec<(String, String, &str)> = sources()?
         .into_iter()

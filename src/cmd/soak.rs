@@ -59,14 +59,16 @@ use dermis_core::soak::{
 };
 
 use crate::cli::parse_model;
-use crate::cmd::args::{check_out_dir, parse_fps, parse_seconds, shading_help};
+use crate::cmd::args::{
+    check_out_dir, parse_fps, parse_seconds, parse_seed, parse_size, shading_help,
+};
 use crate::cmd::chart::soak_png;
-use crate::cmd::render::parse_size;
+use crate::cmd::progress::Progress;
 
 #[derive(clap::Args, Debug, Clone)]
 pub struct SoakArgs {
     /// Wall-clock seconds to play (greater than 0, at most 86400).
-    #[arg(long, default_value_t = 60.0, value_parser = parse_seconds, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 60.0, value_parser = parse_seconds, allow_hyphen_values = true)]
     pub seconds: f64,
     #[arg(
         long,
@@ -78,10 +80,10 @@ pub struct SoakArgs {
     )]
     pub shading: ShadingModel,
     /// Frame size WxH.
-    #[arg(long, default_value = "1280x720", value_parser = parse_size)]
+    #[arg(long, default_value = "1280x720", value_parser = parse_size, allow_hyphen_values = true)]
     pub size: (u32, u32),
     /// Target frame rate (the frame budget and the simulated vsync), 1..=1000.
-    #[arg(long, default_value_t = 60.0, value_parser = parse_fps, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 60.0, value_parser = parse_fps, allow_hyphen_values = true)]
     pub target_fps: f64,
     /// Submit as fast as possible (measures headroom) instead of pacing to the target.
     #[arg(long)]
@@ -90,7 +92,7 @@ pub struct SoakArgs {
     #[arg(long)]
     pub out: PathBuf,
     /// Seed of the run.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, value_parser = parse_seed, allow_hyphen_values = true)]
     pub seed: u64,
     /// Turn the frame-time governor off (the tier follows coverage and light only).
     #[arg(long)]
@@ -122,10 +124,14 @@ fn sleep_until(deadline: Instant) {
 pub fn run(args: SoakArgs) -> Result<(), String> {
     // `--seconds` and `--target-fps` are range-checked by their parsers.
     check_out_dir(&args.out)?;
+    // The set-up's progress; the run has its own bar (seconds of the soak clock).
+    let mut setup = Progress::new("soak", 1);
+    setup.begin("GPU device and pipelines");
     let assets = SceneAssets::load(&crate::paths::assets_dir(), None).map_err(|e| e.to_string())?;
     let gpu = Gpu::headless().map_err(|e| e.to_string())?;
     let (w, h) = args.size;
     let mut gg = GameGpu::new(&gpu, OFFSCREEN_FORMAT, &assets)?;
+    setup.finish();
     let target = Offscreen::new(&gpu, w, h);
     let mut session = Session::new(&assets.character, args.seed, None, true);
     session.settings.set_shading_model(args.shading);

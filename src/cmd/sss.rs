@@ -5,23 +5,25 @@ use dermis_measure::mc::{self, Medium};
 use serde_json::{json, Map, Value};
 
 use crate::cli::parse_material;
+use crate::cmd::args::{parse_eta, parse_g, parse_seed, parse_sss_photons};
+use crate::cmd::progress::Progress;
 
 #[derive(clap::Args, Debug)]
 pub struct SssArgs {
     /// Material preset (skin1 | white-coat).
     #[arg(long, default_value = "skin1", value_parser = parse_material)]
     pub material: Material,
-    /// Relative index of refraction (default: the preset's).
-    #[arg(long)]
+    /// Relative index of refraction, 1..=3 (default: the preset's).
+    #[arg(long, value_parser = parse_eta, allow_hyphen_values = true)]
     pub eta: Option<f64>,
-    /// Henyey–Greenstein anisotropy g (σ_s = σ'_s/(1−g) in the Monte Carlo).
-    #[arg(long, default_value_t = 0.0)]
+    /// Henyey–Greenstein anisotropy g, -0.99..=0.99 (σ_s = σ'_s/(1−g) in the Monte Carlo).
+    #[arg(long, default_value_t = 0.0, value_parser = parse_g, allow_hyphen_values = true)]
     pub g: f64,
-    /// Photons per channel and geometry.
-    #[arg(long, default_value_t = 100_000)]
+    /// Photons per channel and geometry, 1000..=1e8.
+    #[arg(long, default_value_t = 100_000, value_parser = parse_sss_photons, allow_hyphen_values = true)]
     pub photons: u64,
     /// Seed of the Monte Carlo.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, value_parser = parse_seed, allow_hyphen_values = true)]
     pub seed: u64,
     /// Print JSON.
     #[arg(long)]
@@ -37,21 +39,16 @@ pub struct Reference {
     pub slabs: Vec<(f64, [f64; 3], [f64; 3])>,
 }
 
-pub fn validate(material: &Material, eta: f64, g: f64, photons: u64) -> Result<(), String> {
-    if !(1.0..=3.0).contains(&eta) {
-        return Err(format!("--eta {eta} out of range (1..=3)"));
-    }
-    if !(-0.99..=0.99).contains(&g) {
-        return Err(format!("--g {g} out of range (-0.99..=0.99)"));
-    }
-    if !(1000..=100_000_000).contains(&photons) {
-        return Err(format!("--photons {photons} out of range (1000..=1e8)"));
-    }
-    let _ = material;
-    Ok(())
-}
+/// Monte Carlo runs of [`reference`]: three channels, semi-infinite and every slab.
+pub const RUNS: usize = 3 * (1 + SLABS.len());
 
-pub fn reference(material: &Material, photons: u64, seed: u64) -> Reference {
+/// The Monte Carlo reference, a step of `progress` per run.
+pub fn reference(
+    material: &Material,
+    photons: u64,
+    seed: u64,
+    progress: &mut Progress,
+) -> Reference {
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
     let medium = |c: usize| Medium {
         sigma_a: material.sigma_a[c],
@@ -63,7 +60,9 @@ pub fn reference(material: &Material, photons: u64, seed: u64) -> Reference {
     let entered = 1.0 / (1.0 - specular);
     let mut semi = ([0.0; 3], [0.0; 3]);
     for c in 0..3 {
+        progress.begin("Monte Carlo: semi-infinite");
         let e = mc::total_reflectance(&medium(c), photons, seed + c as u64, threads);
+        progress.step("Monte Carlo: semi-infinite");
         semi.0[c] = e.mean * entered;
         semi.1[c] = e.std_err * entered;
     }
@@ -72,7 +71,9 @@ pub fn reference(material: &Material, photons: u64, seed: u64) -> Reference {
         .map(|&d| {
             let mut v = ([0.0; 3], [0.0; 3]);
             for c in 0..3 {
+                progress.begin(&format!("Monte Carlo: slab {d} mm"));
                 let s = mc::slab(&medium(c), d, photons, seed + 10 + c as u64, threads);
+                progress.step(&format!("Monte Carlo: slab {d} mm"));
                 v.0[c] = s.r.mean * entered;
                 v.1[c] = s.r.std_err * entered;
             }
@@ -91,13 +92,21 @@ fn rel(model: [f64; 3], reference: [f64; 3]) -> [f64; 3] {
 
 pub fn run(args: SssArgs) -> Result<(), String> {
     let eta = args.eta.unwrap_or(args.material.eta);
-    validate(&args.material, eta, args.g, args.photons)?;
     let material = Material {
         eta,
         g: args.g,
         ..args.material
     };
-    let reference = reference(&material, args.photons, args.seed);
+    // Steps: the Monte Carlo runs, then the models' predictions (the spatial models measure
+    // their tables for a material met for the first time).
+    let mut progress = Progress::new("sss", (RUNS + 1) as u64);
+    let reference = reference(&material, args.photons, args.seed, &mut progress);
+    progress.begin("model predictions");
+    for model in ShadingModel::ALL {
+        prediction::total_reflectance(model, &material, None);
+    }
+    progress.step("model predictions");
+    progress.finish();
     let mut ref_slab = Map::new();
     let mut ref_slab_se = Map::new();
     for (d, v, se) in &reference.slabs {
