@@ -73,12 +73,10 @@ fn fs_seed(@builtin(position) at: vec4<f32>) -> @location(0) vec4<f32> {
     return vec4<f32>(0.0);
 }
 
-// `best` or the seed held at grid texel `p`, whichever is nearer to `uv`.
+// `best` or the seed held at grid texel `p`, whichever is nearer to `uv`. A texel off the
+// grid needs no test: an out-of-bounds load returns zero (no seed) or, where the driver
+// clamps, an edge texel's real seed, whose distance is then measured like any other.
 fn nearer(best: vec4<f32>, p: vec2<i32>, uv: vec2<f32>) -> vec4<f32> {
-    let size = i32(jump.step.y);
-    if (any(p < vec2<i32>(0)) || any(p >= vec2<i32>(size))) {
-        return best;
-    }
     let s = textureLoad(previous, p, 0);
     let ds = s.xy - uv;
     let db = best.xy - uv;
