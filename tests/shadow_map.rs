@@ -192,3 +192,46 @@ fn the_preintegrated_penumbra_bleeds_like_the_path_traced_shadow_edge() {
         );
     }
 }
+
+#[test]
+fn shadowed_frames_stay_finite_and_non_negative_in_f16_under_every_model() {
+    use dermis_core::scene::SceneAssets;
+    use dermis_core::still::{Shot, StillRenderer};
+    let gpu = Gpu::headless().unwrap_or_else(|e| panic!("{e}"));
+    let assets = SceneAssets::load(
+        &std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets"),
+        None,
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let mut still =
+        StillRenderer::with_format(&gpu, &assets, 160, 180, wgpu::TextureFormat::Rgba16Float)
+            .unwrap_or_else(|e| panic!("{e}"));
+    // Lights from above the head (the face in its own shadow), grazing from the side (every
+    // silhouette a shadow edge, the terminator across the body) and from behind and below
+    // (translucency tested at the far side).
+    let lights = [
+        Vec3::new(0.05, 4.0, 0.05),
+        Vec3::new(6.0, 1.0, 0.0),
+        Vec3::new(-0.5, 0.3, -3.0),
+    ];
+    for model in ShadingModel::ALL {
+        for light in lights {
+            let shot = Shot {
+                light: Some(light),
+                clip: 1,
+                time: 0.2,
+                ..Shot::new(model, dermis_core::shading::material::SKIN1)
+            };
+            let px = still.render_radiance(&gpu, &assets, &shot).unwrap();
+            let bad = px
+                .iter()
+                .filter(|p| p[..3].iter().any(|v| !v.is_finite() || *v < 0.0))
+                .count();
+            assert_eq!(
+                bad, 0,
+                "{model} light {light}: {bad} NaN/inf/negative pixels"
+            );
+            assert!(px.iter().any(|p| p[0] > 0.0), "{model}: a black frame");
+        }
+    }
+}
