@@ -38,7 +38,7 @@ pub use readback::{read_buffer, read_mapped};
 pub use renderer::{DrawSet, FrameView, RenderStats, Renderer};
 pub use rig::{key_light, CharacterBound, CHARACTER, EXPOSURE, KEY_LIGHT_OFFSET};
 pub use sss_pass::SPLIT_FORMAT;
-pub use surface::{choose_format, SurfaceOptions, SurfaceTarget};
+pub use surface::{choose_format, FrameStatus, SurfaceOptions, SurfaceTarget};
 pub use targets::{Targets, DEPTH_FORMAT, MSAA_SAMPLES};
 pub use texture::f32_to_f16;
 pub use timer::{PassTimer, TimerRing};
