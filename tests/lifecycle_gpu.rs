@@ -7,8 +7,8 @@ use std::path::Path;
 use std::process::Command;
 
 use dermis_core::game::{GameGpu, Session, Viewport};
-use dermis_core::lifecycle::{Action, Event, FrameStatus, Lifecycle};
-use dermis_core::render::{Gpu, LiveObjects, Offscreen, OFFSCREEN_FORMAT};
+use dermis_core::lifecycle::{Action, Event, Lifecycle};
+use dermis_core::render::{FrameStatus, Gpu, LiveObjects, Offscreen, OFFSCREEN_FORMAT};
 use dermis_core::scene::SceneAssets;
 use dermis_core::ui::Insets;
 

@@ -6,11 +6,12 @@
 //! targets), and the frame: the core's [`FrameDriver`] running the game ([`GameFrame`]: the
 //! same [`Session`] loop as the desktop window, the governor choosing the shading tier).
 
-use crate::lifecycle::FrameStatus;
 use android_activity::ndk::native_window::NativeWindow;
 use dermis_core::game::{GameFrame, GameGpu, Key, Screen, Session};
 use dermis_core::heap::allocations;
-use dermis_core::render::{Clock, FrameDriver, Gpu, Output, SurfaceOptions, SurfaceTarget};
+use dermis_core::render::{
+    Clock, FrameDriver, FrameStatus, Gpu, Output, SurfaceOptions, SurfaceTarget,
+};
 use dermis_core::scene::SceneAssets;
 use dermis_core::ui::Insets;
 use std::path::PathBuf;

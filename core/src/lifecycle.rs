@@ -17,6 +17,9 @@
 
 use std::time::Duration;
 
+/// What the surface reports for a frame (declared with the surface code, which produces it).
+pub use crate::render::FrameStatus;
+
 /// Lifecycle input, as the glue observed it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Event {
@@ -74,18 +77,6 @@ pub enum Action {
 pub enum Screen {
     Main,
     Play,
-}
-
-/// Outcome of acquiring / presenting one frame (mirrors `wgpu::CurrentSurfaceTexture`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum FrameStatus {
-    Presented,
-    Suboptimal,
-    Timeout,
-    Occluded,
-    Outdated,
-    Lost,
-    Validation,
 }
 
 #[derive(Clone, Debug, PartialEq, Eq)]

@@ -16,11 +16,10 @@ use std::time::Instant;
 
 use super::offscreen::Offscreen;
 use super::renderer::RenderStats;
-use super::surface::SurfaceTarget;
+use super::surface::{FrameStatus, SurfaceTarget};
 use super::targets::Targets;
 use super::timer::TimerRing;
 use super::Gpu;
-use crate::lifecycle::FrameStatus;
 
 /// Where a frame is drawn.
 pub struct FrameOutput<'a> {

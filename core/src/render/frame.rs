@@ -4,6 +4,10 @@ use glam::{Mat4, Vec3};
 
 use super::shadow_map::ShadowView;
 
+/// Where the key light stands relative to the character's feet: above, in front of and to the
+/// right of it (the stage, `rig`, places it; declared here so the frame does not import it).
+pub const KEY_LIGHT_OFFSET: Vec3 = Vec3::new(1.5, 3.0, 2.5);
+
 /// A point light.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Light {
@@ -18,7 +22,7 @@ impl Default for Light {
     fn default() -> Self {
         Self {
             // The key light of a character standing at the origin.
-            position: super::rig::KEY_LIGHT_OFFSET,
+            position: KEY_LIGHT_OFFSET,
             intensity: 30.0,
             color: Vec3::new(1.0, 0.97, 0.92),
             ambient: Vec3::new(0.10, 0.11, 0.13),

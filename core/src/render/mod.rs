@@ -46,7 +46,7 @@ pub use shadow_map::{
     SHADOW_MAP_SIZE,
 };
 pub use sss_pass::SPLIT_FORMAT;
-pub use surface::{choose_format, SurfaceOptions, SurfaceTarget};
+pub use surface::{choose_format, FrameStatus, SurfaceOptions, SurfaceTarget};
 pub use targets::{Targets, DEPTH_FORMAT, MSAA_SAMPLES};
 pub use texture::f32_to_f16;
 pub use timer::{PassTimer, TimerRing};

@@ -11,9 +11,7 @@ use crate::camera::Capsule;
 /// Exposure before tone mapping (the game, the demo, stills).
 pub const EXPOSURE: f32 = 1.6;
 
-/// Where the key light stands relative to the character's feet: above, in front of and to the
-/// right of it.
-pub const KEY_LIGHT_OFFSET: Vec3 = Vec3::new(1.5, 3.0, 2.5);
+pub use super::frame::KEY_LIGHT_OFFSET;
 
 /// The key light for a character standing at `feet`.
 pub fn key_light(feet: Vec3) -> Light {

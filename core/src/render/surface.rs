@@ -5,7 +5,19 @@
 
 use super::targets::Targets;
 use super::Gpu;
-use crate::lifecycle::FrameStatus;
+
+/// Outcome of acquiring / presenting one frame (mirrors `wgpu::CurrentSurfaceTexture`); the
+/// lifecycle (`crate::lifecycle`) and the shells read it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FrameStatus {
+    Presented,
+    Suboptimal,
+    Timeout,
+    Occluded,
+    Outdated,
+    Lost,
+    Validation,
+}
 
 /// How a surface is configured.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
