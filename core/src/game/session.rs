@@ -31,7 +31,23 @@ pub enum Key {
     Pause,
     /// Show / hide the frame-time overlay.
     FrameStats,
+    /// Switch the play camera between the wide follow camera and its close-up (the play
+    /// screen's "View" button does the same).
+    Camera,
 }
+
+/// The wide follow camera: eye offset and look-at point from the runner's feet (x right, y
+/// up, z forward): the track far ahead, the runner small.
+pub const FOLLOW_OFFSET: Vec3 = Vec3::new(0.0, 2.2, -4.5);
+pub const FOLLOW_LOOK: Vec3 = Vec3::new(0.0, 1.0, 4.0);
+/// The close-up follow camera: over the runner's right shoulder, near enough that the body
+/// fills a good part of the screen and its skin — arms, shoulders, neck, legs, lit by the key
+/// light from the front right, so rims and ears are backlit — shows the chosen model, while
+/// the track ahead stays in view.
+pub const CLOSE_OFFSET: Vec3 = Vec3::new(0.4, 1.65, -1.4);
+pub const CLOSE_LOOK: Vec3 = Vec3::new(0.0, 1.15, 3.0);
+/// Seconds the camera takes to glide between the two.
+pub const CAMERA_SWITCH_S: f32 = 0.5;
 
 /// The screen the UI is laid out for.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -77,6 +93,8 @@ pub struct Session {
     pub governor: Governor,
     /// What this frame needs (computed by [`Session::update`]).
     pub needs: Needs,
+    /// 0: the wide follow camera, 1: the close-up; in between while switching.
+    close: f32,
 }
 
 impl Session {
@@ -93,8 +111,12 @@ impl Session {
             .unwrap_or_default();
         let mut game = Game::new(seed);
         game.set_best(settings.best);
-        let mut camera = FollowCamera::new(Vec3::new(0.0, 2.2, -4.5), Vec3::new(0.0, 1.0, 4.0));
-        camera.snap(game.camera_target().0, 0.0);
+        let close = if settings.close_camera { 1.0 } else { 0.0 };
+        let mut camera = FollowCamera::new(
+            FOLLOW_OFFSET.lerp(CLOSE_OFFSET, close),
+            FOLLOW_LOOK.lerp(CLOSE_LOOK, close),
+        );
+        camera.snap(camera_target(&game, close).0, 0.0);
         let showroom = Showroom::new(game.screen(), &camera);
         Self {
             game,
@@ -123,7 +145,19 @@ impl Session {
             ),
             needs: Needs::default(),
             settings,
+            close,
         }
+    }
+
+    /// How far the play camera is into its close-up (0 wide, 1 close).
+    pub fn close_up(&self) -> f32 {
+        self.close
+    }
+
+    /// Switches the play camera (wide ↔ close-up) and saves the choice.
+    pub fn toggle_camera(&mut self) {
+        self.settings.close_camera = !self.settings.close_camera;
+        self.save_settings();
     }
 
     /// Sets the governor's configuration (frame budget) and switches: `budget` the
@@ -196,6 +230,7 @@ impl Session {
                 self.pending = Input::NONE;
             }
             Key::FrameStats => self.gui.show_frame_stats = !self.gui.show_frame_stats,
+            Key::Camera => self.toggle_camera(),
         }
     }
 
@@ -229,7 +264,13 @@ impl Session {
     pub fn pointer_up(&mut self, x: f32, y: f32) {
         self.ui.pointer_up(x, y);
         if let Some(down) = self.pointer_down.take() {
-            if self.game.screen() == Screen::Play && !self.game.is_paused() {
+            // A press on a button (the view switch) is the button's, not a jump.
+            let s = self.viewport.scale.max(1e-3);
+            let on_button = self
+                .ui
+                .button_rects()
+                .any(|r| r.contains([down.0 / s, down.1 / s]));
+            if self.game.screen() == Screen::Play && !self.game.is_paused() && !on_button {
                 let gesture = Input::from_gesture(down, (x, y), 24.0 * self.viewport.scale);
                 self.pending.merge(&gesture);
             }
@@ -260,10 +301,20 @@ impl Session {
             }
             None => self.game.update(dt, &input),
         };
-        let (target, yaw) = self.game.camera_target();
         let (feet, _) = self.game.player_transform();
         // Paused: the camera holds still too.
         let camera_dt = if self.game.is_paused() { 0.0 } else { dt };
+        let want = if self.settings.close_camera { 1.0 } else { 0.0 };
+        let step = camera_dt.max(0.0) / CAMERA_SWITCH_S;
+        self.close = if self.close < want {
+            (self.close + step).min(want)
+        } else {
+            (self.close - step).max(want)
+        };
+        let k = self.close * self.close * (3.0 - 2.0 * self.close);
+        self.camera.offset = FOLLOW_OFFSET.lerp(CLOSE_OFFSET, k);
+        self.camera.look_offset = FOLLOW_LOOK.lerp(CLOSE_LOOK, k);
+        let (target, yaw) = camera_target(&self.game, k);
         self.camera
             .update(camera_dt, target, yaw, &CHARACTER.capsule_at(feet, 1.0));
         self.showroom
@@ -288,6 +339,9 @@ impl Session {
             .gui
             .draw(&mut self.ui, &mut self.game, &mut self.settings);
         self.ui.end();
+        if outcome.camera_toggled {
+            self.toggle_camera();
+        }
         if outcome.settings_changed {
             self.save_settings();
         }
@@ -373,6 +427,16 @@ impl Session {
             props: true,
         }
     }
+}
+
+/// What the follow camera tracks, `close` (0..1) into the close-up: the wide camera follows
+/// the runner half-way towards its lane ([`Game::camera_target`]); the close-up, whose view
+/// is narrower at the runner, follows it all the way.
+fn camera_target(game: &Game, close: f32) -> (Vec3, f32) {
+    let (target, yaw) = game.camera_target();
+    let (feet, _) = game.player_transform();
+    let x = target.x + (feet.x - target.x) * close;
+    (Vec3::new(x, target.y, target.z), yaw)
 }
 
 #[cfg(test)]
