@@ -172,3 +172,52 @@ fn the_pause_and_game_over_panels_fit_a_narrow_phone() {
         assert!(inside(&r, &safe), "{r:?} outside {safe:?}");
     }
 }
+
+#[test]
+fn the_game_over_panel_leaves_the_runner_in_view() {
+    // The runner stands at the crate it hit: the panel goes beside it, not over it, whichever
+    // lane it died in.
+    for (v, lane) in [
+        (vp(640, 360, 1.0), 0),
+        (vp(640, 360, 1.0), 1),
+        (vp(640, 360, 1.0), -1),
+        (vp(360, 640, 1.0), 1),
+        (vp(1280, 720, 1.0), 0),
+        (vp(2340, 1080, 2.75), 1),
+    ] {
+        let tag = format!("{}x{}@{} lane {lane}", v.width, v.height, v.scale);
+        let model = dermis_core::probe::plane_model(0.5, 0.01);
+        let mut s = Session::new(&model, 4, None, false);
+        s.game.start();
+        let mut turn = dermis_core::game::Input::NONE;
+        turn.left = lane < 0;
+        turn.right = lane > 0;
+        s.game.tick(&turn);
+        s.game.debug_clear_obstacles_until(40.0);
+        assert!(s
+            .game
+            .debug_place_obstacle(dermis_core::game::ObstacleKind::Tall, lane, 30.0));
+        for _ in 0..120 {
+            s.update(FRAME, &model, v);
+        }
+        while s.game.screen() == Screen::Play {
+            s.game.tick(&dermis_core::game::Input::NONE);
+        }
+        for _ in 0..30 {
+            s.update(FRAME, &model, v);
+        }
+        assert_eq!(s.game.screen(), Screen::GameOver, "{tag}");
+        assert_eq!(s.game.lane(), lane, "{tag}");
+        let (feet, _) = s.game.player_transform();
+        let (lo, hi) = CHARACTER.box_at(feet);
+        let body = on_screen(&s, &v, lo, hi);
+        let safe = s.ui.safe_rect();
+        for r in s.ui.panel_rects().chain(s.ui.button_rects()) {
+            assert!(inside(&r, &safe), "{tag}: {r:?} outside {safe:?}");
+            assert!(
+                !overlap(&r, &body),
+                "{tag}: {r:?} covers the runner {body:?}"
+            );
+        }
+    }
+}

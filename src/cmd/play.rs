@@ -154,7 +154,7 @@ pub fn run(args: PlayArgs) -> Result<(), String> {
         wgpu_allocs.push((a.submitted - a.updated) as f64);
         draw_calls = draw_calls.max(stats.draw_calls);
         max_ticks = max_ticks.max(info.ticks);
-        if frame % 60 == 0 {
+        if frame.is_multiple_of(60) {
             progress.set(frame, args.frames, "frames");
         }
         if frame - 1 == WARM_UP {

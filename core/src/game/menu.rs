@@ -7,8 +7,8 @@
 //! under it, the panel and the hints at the bottom. Nothing overlaps the stage. On a small
 //! screen (a phone is 360–420 dp across) the column narrows, the title and the hints shrink to
 //! fit, and pieces are dropped in a fixed order when there is no height for them: first the
-//! panel's roomy spacing, then the hints, then the title, then the best score; the two buttons
-//! always stay.
+//! panel's roomy spacing, then the title, then the hints shrink to their smallest size, then
+//! the best score goes, then the hints; the two buttons always stay.
 
 use super::Viewport;
 use crate::ui::{Rect, Ui};
@@ -71,7 +71,7 @@ pub struct MenuLayout {
 impl MenuLayout {
     /// The widgets' width inside the panel.
     pub fn button_w(&self) -> f32 {
-        (self.panel.w - 40.0).min(300.0).max(0.0)
+        (self.panel.w - 40.0).clamp(0.0, 300.0)
     }
 
     /// The gap above the first button (and below the best score).
@@ -98,15 +98,18 @@ fn hint_h(size: f32) -> f32 {
     HINT.len() as f32 * size + (HINT.len() - 1) as f32 * HINT_LINE_GAP + 2.0 * HINT_PAD
 }
 
-/// What fits in `room` (height) besides the two buttons, in the drop order.
+/// What fits in `room` (height) besides the two buttons, taken in this order: the hints at
+/// their smallest size ([`HINT_MIN_SIZE`]), the best score, the hints at `hint_size`, the
+/// title, the panel's roomy spacing (which needs `roomy_room`).
 struct Fit {
     best: bool,
+    /// The hints' text size, when they are shown.
+    hint: Option<f32>,
     title: bool,
-    hint: bool,
     roomy: bool,
 }
 
-fn fit(room: f32, roomy_room: f32, title_h: f32, hint_h: f32) -> Fit {
+fn fit(room: f32, roomy_room: f32, title_h: f32, hint_size: f32) -> Fit {
     let mut used = PANEL_COMPACT_H;
     let mut take = |h: f32| {
         let ok = used + h <= room;
@@ -115,14 +118,20 @@ fn fit(room: f32, roomy_room: f32, title_h: f32, hint_h: f32) -> Fit {
         }
         ok
     };
+    let small = HINT_MIN_SIZE.min(hint_size);
+    let shown = take(hint_h(small) + MARGIN);
     let best = take(PANEL_TIGHT_H - PANEL_COMPACT_H);
+    let hint = match shown {
+        true if take(hint_h(hint_size) - hint_h(small)) => Some(hint_size),
+        true => Some(small),
+        false => None,
+    };
     let title = take(title_h + MARGIN);
-    let hint = take(hint_h + MARGIN);
     let roomy = best && used + PANEL_FULL_H - PANEL_TIGHT_H <= roomy_room;
     Fit {
         best,
-        title,
         hint,
+        title,
         roomy,
     }
 }
@@ -138,45 +147,64 @@ pub fn menu_layout(safe: Rect, title_w: f32, hint_w: f32) -> MenuLayout {
         (safe.w - 2.0 * MARGIN).max(0.0)
     };
     let title_size = TITLE_SIZE * (col_w / title_w.max(1.0)).min(1.0);
-    let hint_size =
+    let title_w = title_w * title_size / TITLE_SIZE;
+    let hint_fit =
         (HINT_SIZE * ((col_w - 2.0 * HINT_PAD) / hint_w.max(1.0)).min(1.0)).max(HINT_MIN_SIZE);
+    let f = if side {
+        let room = safe.h - 2.0 * MARGIN;
+        fit(room, room, title_size, hint_fit)
+    } else {
+        // The panel's roomy spacing only where the character keeps half the height.
+        fit(
+            safe.h - 3.0 * MARGIN - MIN_STAGE_H,
+            safe.h - 3.0 * MARGIN - MIN_STAGE_H.max(0.5 * safe.h),
+            title_size,
+            hint_fit,
+        )
+    };
+    let panel_h = panel_h(&f);
+    let hint_size = f.hint.unwrap_or(hint_fit);
     let hint_box_w = (hint_w * hint_size / HINT_SIZE + 2.0 * HINT_PAD).min(col_w);
     let bottom = safe.y + safe.h - MARGIN;
+    // The column (landscape: beside the stage) or the full width (portrait), and the hints'
+    // box at its bottom.
+    let (col_x, col_w) = if side {
+        (safe.x + safe.w - MARGIN - col_w, col_w)
+    } else {
+        (safe.x, safe.w)
+    };
+    let mut below = bottom;
+    let hint = f.hint.map(|size| {
+        let h = hint_h(size);
+        below -= h + MARGIN;
+        Rect::new(
+            col_x + (col_w - hint_box_w) * 0.5,
+            bottom - h,
+            hint_box_w,
+            h,
+        )
+    });
+    let top = safe.y + MARGIN;
+    let title = f
+        .title
+        .then(|| Rect::new(col_x + (col_w - title_w) * 0.5, top, title_w, title_size));
+    let under_title = if f.title {
+        top + title_size + MARGIN
+    } else {
+        top
+    };
     if side {
-        let col_x = safe.x + safe.w - MARGIN - col_w;
-        let room = safe.h - 2.0 * MARGIN;
-        let f = fit(room, room, title_size, hint_h(hint_size));
-        let panel_h = panel_h(&f);
-        let mut top = safe.y + MARGIN;
-        let title = f.title.then(|| {
-            let r = Rect::new(
-                col_x + (col_w - title_w * title_size / TITLE_SIZE) * 0.5,
-                top,
-                title_w * title_size / TITLE_SIZE,
-                title_size,
-            );
-            top += title_size + MARGIN;
-            r
-        });
-        let mut below = bottom;
-        let hint = f.hint.then(|| {
-            let h = hint_h(hint_size);
-            below -= h + MARGIN;
-            Rect::new(
-                col_x + (col_w - hint_box_w) * 0.5,
-                bottom - h,
-                hint_box_w,
-                h,
-            )
-        });
-        let y = top + ((below - top - panel_h) * 0.5).max(0.0);
+        let y = under_title + ((below - under_title - panel_h) * 0.5).max(0.0);
         let panel = Rect::new(col_x, y, col_w, panel_h);
+        // The full height, less a twentieth top and bottom: the close-up keeps clear of the
+        // screen's edges.
         let x0 = safe.x + MARGIN;
+        let m = MARGIN.max(0.05 * safe.h);
         let stage = Rect::new(
             x0,
-            safe.y + MARGIN,
+            safe.y + m,
             (col_x - MARGIN - x0).max(1.0),
-            (safe.h - 2.0 * MARGIN).max(1.0),
+            (safe.h - 2.0 * m).max(1.0),
         );
         return MenuLayout {
             title,
@@ -190,45 +218,16 @@ pub fn menu_layout(safe: Rect, title_w: f32, hint_w: f32) -> MenuLayout {
             side,
         };
     }
-    let panel_w = col_w.min(PANEL_W);
-    // The panel's roomy spacing only where the character keeps half the height.
-    let f = fit(
-        safe.h - 3.0 * MARGIN - MIN_STAGE_H,
-        safe.h - 3.0 * MARGIN - MIN_STAGE_H.max(0.5 * safe.h),
-        title_size,
-        hint_h(hint_size),
-    );
-    let panel_h = panel_h(&f);
-    let title_w = title_w * title_size / TITLE_SIZE;
-    let top = safe.y + MARGIN;
-    let title = f
-        .title
-        .then(|| Rect::new(safe.x + (safe.w - title_w) * 0.5, top, title_w, title_size));
-    let stage_top = if f.title {
-        top + title_size + MARGIN
-    } else {
-        top
-    };
-    let mut below = bottom;
-    let hint = f.hint.then(|| {
-        let h = hint_h(hint_size);
-        below -= h + MARGIN;
-        Rect::new(
-            safe.x + (safe.w - hint_box_w) * 0.5,
-            bottom - h,
-            hint_box_w,
-            h,
-        )
-    });
+    let panel_w = (safe.w - 2.0 * MARGIN).clamp(0.0, PANEL_W);
     // At the bottom above the hints; on a short screen right under the title.
-    let y = (below - panel_h).max(stage_top);
+    let y = (below - panel_h).max(under_title);
     let panel = Rect::new(safe.x + (safe.w - panel_w) * 0.5, y, panel_w, panel_h);
-    let stage = if y - MARGIN - stage_top >= 0.5 * MIN_STAGE_H {
+    let stage = if y - MARGIN - under_title >= 0.5 * MIN_STAGE_H {
         Rect::new(
             safe.x + MARGIN,
-            stage_top,
+            under_title,
             (safe.w - 2.0 * MARGIN).max(1.0),
-            y - MARGIN - stage_top,
+            y - MARGIN - under_title,
         )
     } else {
         // No room beside or above the panel (a tiny window): the whole safe area.

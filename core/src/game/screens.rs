@@ -33,6 +33,10 @@ pub struct UiOutcome {
 /// UI is not rebuilt every frame for it.
 pub const FRAME_STATS_PERIOD_S: f64 = 0.5;
 
+/// The game-over panel's share of a landscape screen's width (at least
+/// [`menu::PANEL_MIN_W`], at most [`menu::PANEL_W`]).
+pub const GAME_OVER_SHARE: f32 = 0.4;
+
 /// Per-screen text buffers, reused every frame.
 pub struct GameUi {
     option: String,
@@ -254,7 +258,7 @@ impl GameUi {
             ui.panel(panel);
             let head = Anchor::Top.place(panel, [0.0, 24.0], [w - 40.0, 40.0]);
             ui.label_centered(head, "PAUSED", 40.0, TITLE);
-            let resume = Anchor::Bottom.place(panel, [0.0, 24.0], [220.0, 56.0]);
+            let resume = Anchor::Bottom.place(panel, [0.0, 24.0], [(w - 40.0).min(220.0), 56.0]);
             if ui.button("resume", resume, "Resume") {
                 game.resume();
                 out.resumed = true;
@@ -262,9 +266,24 @@ impl GameUi {
         }
     }
 
+    /// The game-over panel, beside the runner so the runner standing at the crate it hit
+    /// stays in view: landscape, on the side of the screen away from it (the right unless it
+    /// died in the right-hand lane); portrait, at the top.
     fn game_over(&mut self, ui: &mut Ui, game: &mut Game, out: &mut UiOutcome) {
-        let w = centre_panel_w(ui);
-        let panel = ui.anchored(Anchor::Center, [0.0, 0.0], [w, 280.0]);
+        let safe = ui.safe_rect();
+        let (w, anchor, offset) = if safe.w > safe.h {
+            let w = (GAME_OVER_SHARE * safe.w).clamp(menu::PANEL_MIN_W, menu::PANEL_W);
+            // Lane 1 is the runner's right: the right of the screen (the camera is behind it).
+            let anchor = if game.lane() > 0 {
+                Anchor::Left
+            } else {
+                Anchor::Right
+            };
+            (w.min(centre_panel_w(ui)), anchor, [menu::MARGIN, 0.0])
+        } else {
+            (centre_panel_w(ui), Anchor::Top, [0.0, menu::MARGIN])
+        };
+        let panel = ui.anchored(anchor, offset, [w, 240.0]);
         ui.panel(panel);
         let head = Anchor::Top.place(panel, [0.0, 24.0], [w - 40.0, 40.0]);
         ui.label_centered(head, "GAME OVER", 40.0, TITLE);
@@ -280,7 +299,7 @@ impl GameUi {
         }
         let best = Anchor::Top.place(score, [0.0, 40.0], [w - 40.0, 24.0]);
         ui.label_centered(best, &self.line2, 22.0, DIM);
-        let replay = Anchor::Bottom.place(panel, [0.0, 24.0], [220.0, 56.0]);
+        let replay = Anchor::Bottom.place(panel, [0.0, 24.0], [(w - 40.0).min(220.0), 56.0]);
         if ui.button("replay", replay, "Replay") {
             game.replay();
             out.started = true;
@@ -288,7 +307,8 @@ impl GameUi {
     }
 }
 
-/// The pause and game-over panels' width: 340 units, less on a screen narrower than that.
+/// The pause panel's width (and the game-over panel's in portrait): 340 units, less on a
+/// screen narrower than that.
 fn centre_panel_w(ui: &Ui) -> f32 {
     (ui.safe_rect().w - 2.0 * menu::MARGIN).clamp(240.0, 340.0)
 }
