@@ -34,7 +34,7 @@ pub const TITLE_SIZE: f32 = 44.0;
 pub const HINT: [&str; 3] = [
     "Space / tap: jump",
     "Arrows / swipe: change lane",
-    "P: pause   C: close-up camera",
+    "P: pause   C / View: close-up",
 ];
 pub const HINT_SIZE: f32 = 18.0;
 pub const HINT_MIN_SIZE: f32 = 12.0;
