@@ -169,22 +169,6 @@ fn check_game(g: &GameArgs) -> Result<(), String> {
     }
 }
 
-impl Cli {
-    /// Whether the command renders offscreen only (no window: no display server is needed).
-    pub fn is_headless_gpu(&self) -> bool {
-        matches!(
-            self.command,
-            Some(
-                Command::Play(_)
-                    | Command::Render(_)
-                    | Command::Profile(_)
-                    | Command::Bench(_)
-                    | Command::Soak(_)
-            )
-        )
-    }
-}
-
 pub fn run(cli: Cli) -> Result<(), String> {
     match cli.command {
         None => {

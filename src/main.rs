@@ -48,9 +48,9 @@ fn main() -> ExitCode {
     // Materials no shipped table covers (the measurement commands' `--eta`, `--g`) are baked
     // by the Monte Carlo; the game's presets are shipped.
     dermis_measure::bake::install();
-    if cli.is_headless_gpu() {
-        quiet_wayland_probe();
-    }
+    // Headless commands and windows alike: winit's and wgpu's Wayland probes print errors
+    // without an XDG_RUNTIME_DIR.
+    quiet_wayland_probe();
     match cli::run(cli) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
@@ -60,13 +60,16 @@ fn main() -> ExitCode {
     }
 }
 
-/// Where `XDG_RUNTIME_DIR` is unset (containers, CI), wgpu's GL backend probing for a Wayland
-/// display makes libwayland print `error: XDG_RUNTIME_DIR is invalid or not set` (twice) even
-/// though an offscreen command needs no display. For those commands only, point it at a
-/// private, empty directory (`$TMPDIR/dermis-runtime-UID`, mode 0700, owned by this user,
+/// Where `XDG_RUNTIME_DIR` is unset (containers, CI, `xvfb-run`), Mesa's Vulkan device-select
+/// layer (`libVkLayer_MESA_device_select`, in `vkEnumeratePhysicalDevices`) probes for a
+/// Wayland display with `wl_display_connect`, and libwayland prints `error: XDG_RUNTIME_DIR
+/// is invalid or not set in the environment.` (once per enumeration: twice per run) — for
+/// offscreen commands, which need no display, and for the window on X11 alike. So point it at
+/// a private, empty directory (`$TMPDIR/dermis-runtime-UID`, mode 0700, owned by this user,
 /// reused by later runs) before any GPU instance exists: the probe then finds no Wayland
-/// socket and stays quiet. Windowed commands keep the real environment. Runs on the main
-/// thread before any other thread is started.
+/// socket and stays quiet. Nothing is lost: without `XDG_RUNTIME_DIR` no Wayland socket named
+/// by `WAYLAND_DISPLAY` could be found anyway (an absolute `WAYLAND_DISPLAY` still works), and
+/// X11 does not use it. Runs on the main thread before any other thread is started.
 #[cfg(target_os = "linux")]
 fn quiet_wayland_probe() {
     use std::os::unix::fs::{DirBuilderExt, MetadataExt};

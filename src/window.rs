@@ -1,6 +1,7 @@
 //! The desktop window (winit). Default: the runner game. `dermis demo`: the showroom.
 //! Game keys: ←/→ (A/D) change lane, Space/↑ jump or start, M next shading model, P pause /
-//! resume, F frame-time overlay, Esc pause a run (again: back to the main screen; there: quit).
+//! resume, C close-up / wide play camera, F frame-time overlay, Esc pause a run (again: back
+//! to the main screen; there: quit).
 //! A run pauses by itself when the window loses focus. Demo keys: M next model, N next
 //! material, C next clip.
 
@@ -59,10 +60,22 @@ pub fn settings_path() -> Option<PathBuf> {
     Some(base.join("dermis").join("settings.txt"))
 }
 
+/// The settings file a game window reads and writes: `--settings FILE`; else, for a player's
+/// session, the user's ([`settings_path`]); a smoke-test run (`--frames N`) uses none, so it
+/// starts from the default settings (model, best score) whatever the user saved, and saves
+/// nothing.
+pub fn game_settings_path(args: &GameArgs) -> Option<PathBuf> {
+    match (&args.settings, args.window.frames) {
+        (Some(path), _) => Some(path.clone()),
+        (None, Some(_)) => None,
+        (None, None) => settings_path(),
+    }
+}
+
 pub fn run_game(args: GameArgs) -> Result<(), String> {
     let assets = SceneAssets::load(&crate::paths::assets_dir(), args.window.model.as_deref())
         .map_err(|e| e.to_string())?;
-    let path = args.settings.clone().or_else(settings_path);
+    let path = game_settings_path(&args);
     let mut session = Session::new(&assets.character, args.seed, path, args.autoplay);
     if let Some(m) = args.shading {
         session.settings.set_shading_model(m);
@@ -185,6 +198,7 @@ impl App {
                 "m" => session.key(GameKey::NextModel),
                 "p" => session.key(GameKey::Pause),
                 "f" => session.key(GameKey::FrameStats),
+                "c" => session.key(GameKey::Camera),
                 "Escape" => match session.game.screen() {
                     dermis_core::game::Screen::Main => event_loop.exit(),
                     dermis_core::game::Screen::Play if !session.is_paused() => session.pause(),
@@ -301,6 +315,7 @@ impl ApplicationHandler for App {
                     if !focused {
                         session.auto_pause();
                     }
+                    session.gui.reset_frame_clock();
                 }
                 // Frames may have stopped while away: the next one starts the clock afresh.
                 if let Some(g) = &mut self.graphics {
@@ -410,5 +425,31 @@ mod screenshot {
         .ok_or("screenshot readback: the buffer could not be mapped")?;
         image::save_buffer(path, &pixels, w, h, image::ExtendedColorType::Rgba8)
             .map_err(|e| format!("{}: {e}", path.display()))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::Parser;
+
+    fn window_args(argv: &[&str]) -> GameArgs {
+        let mut all = vec!["dermis"];
+        all.extend_from_slice(argv);
+        crate::cli::Cli::try_parse_from(all).unwrap().game
+    }
+
+    #[test]
+    fn a_smoke_test_run_ignores_the_users_settings() {
+        // `--frames N`: the default settings, nothing read or saved.
+        assert_eq!(game_settings_path(&window_args(&["--frames", "1"])), None);
+        // Unless a file is named.
+        let named = window_args(&["--frames", "1", "--settings", "/tmp/s.txt"]);
+        assert_eq!(
+            game_settings_path(&named),
+            Some(PathBuf::from("/tmp/s.txt"))
+        );
+        // A player's session: the user's file.
+        assert_eq!(game_settings_path(&window_args(&[])), settings_path());
     }
 }

@@ -1,5 +1,6 @@
 //! A real window under Xvfb: `dermis --frames 60 --screenshot FILE` presents 60 frames and
-//! saves the last one, which must show the lit character on the floor.
+//! saves the last one, which must show the lit character on the floor. A `--frames` run is a
+//! smoke test: it neither reads nor writes the user's settings.
 
 use std::process::Command;
 
@@ -16,12 +17,20 @@ fn window_presents_and_screenshots_under_xvfb() {
     let dir = std::env::temp_dir().join(format!("dermis-smoke-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let shot = dir.join("window.png");
+    // The user's saved settings (a model, a best score) must not change what it shows.
+    let config = dir.join("config");
+    let saved = config.join("dermis/settings.txt");
+    std::fs::create_dir_all(saved.parent().unwrap()).unwrap();
+    let text = "shading=ward\nbest=999\n";
+    std::fs::write(&saved, text).unwrap();
     let out = Command::new("xvfb-run")
         .args(["-a", "-s", "-screen 0 1280x720x24"])
         .arg(env!("CARGO_BIN_EXE_dermis"))
         .args(["--frames", "60", "--screenshot"])
         .arg(&shot)
         .env("WINIT_UNIX_BACKEND", "x11")
+        .env("XDG_CONFIG_HOME", &config)
+        .env_remove("XDG_RUNTIME_DIR")
         .output()
         .unwrap();
     assert!(
@@ -51,5 +60,13 @@ fn window_presents_and_screenshots_under_xvfb() {
         warm > 500,
         "only {warm} warm pixels: is the character visible?"
     );
+    assert_eq!(
+        std::fs::read_to_string(&saved).unwrap(),
+        text,
+        "settings touched"
+    );
+    // Without XDG_RUNTIME_DIR (a container, CI) nothing complains about it.
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!stderr.contains("XDG_RUNTIME_DIR"), "stderr: {stderr}");
     let _ = std::fs::remove_dir_all(&dir);
 }

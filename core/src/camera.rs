@@ -102,10 +102,16 @@ pub struct FollowCamera {
 }
 
 impl FollowCamera {
+    /// The springs' default angular frequencies (1/s) for the eye and the look-at point. A
+    /// spring trails a target moving at speed u by 2u/ω: at 12 m/s the eye sits 4 m behind
+    /// its offset.
+    pub const EYE_OMEGA: f32 = 6.0;
+    pub const LOOK_OMEGA: f32 = 10.0;
+
     pub fn new(offset: Vec3, look_offset: Vec3) -> Self {
         Self {
-            eye: Spring::new(offset, 6.0),
-            look: Spring::new(look_offset, 10.0),
+            eye: Spring::new(offset, Self::EYE_OMEGA),
+            look: Spring::new(look_offset, Self::LOOK_OMEGA),
             offset,
             look_offset,
             fov_y: 50f32.to_radians(),

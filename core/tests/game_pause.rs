@@ -98,7 +98,8 @@ fn the_pause_panel_resumes_with_its_button() {
         s.update(FRAME, &model, viewport());
     }
     assert_eq!(s.game.screen(), Screen::Play);
-    assert!(buttons(&s).is_empty(), "no button while running");
+    // While running, one button: the camera switch (top right, away from the play area).
+    assert_eq!(buttons(&s).len(), 1, "only the view switch while running");
     s.key(Key::Pause);
     assert!(s.is_paused());
     let ticks = s.game.ticks();
@@ -119,7 +120,11 @@ fn the_pause_panel_resumes_with_its_button() {
     let info = s.update(FRAME, &model, viewport());
     assert_eq!(info.ticks, 2);
     assert!(!s.game.is_airborne(), "the click did not jump");
-    assert!(buttons(&s).is_empty());
+    assert_eq!(
+        buttons(&s).len(),
+        1,
+        "the panel is gone; the view switch is back"
+    );
     // The key resumes too.
     s.key(Key::Pause);
     s.key(Key::Pause);
@@ -166,14 +171,40 @@ fn the_frame_time_overlay_is_off_by_default_and_adds_a_label() {
         s.gui.record_frame_time(1.0 / 50.0, 4.0, 6.0);
     }
     let text = s.gui.frame_stats_text();
-    assert!(text.starts_with("50 fps  20.0 ms"), "{text}");
-    assert!(text.contains("cpu 4.0 ms"), "{text}");
+    assert!(text.starts_with("50 fps  frame 20.0 ms"), "{text}");
+    assert!(text.contains("\ncpu 4.0 ms  gpu 6.0 ms"), "{text}");
     s.update(FRAME, &model, viewport());
     assert!(s.ui.vertices().len() > placeholder);
+    // Without GPU timing it says so rather than showing a number.
+    for _ in 0..40 {
+        s.gui.record_frame_time(1.0 / 50.0, 4.0, f64::NAN);
+    }
+    assert!(s.gui.frame_stats_text().ends_with("gpu not timed"));
     // Bad frame times are ignored.
     s.gui.record_frame_time(f64::NAN, 1.0, 1.0);
     s.gui.record_frame_time(-1.0, 1.0, 1.0);
     s.key(Key::FrameStats);
     s.update(FRAME, &model, viewport());
     assert_eq!(s.ui.vertices().len(), without);
+}
+
+#[test]
+fn the_overlay_shows_the_wall_clock_time_between_frames() {
+    // A slow machine: 1.45 s between pictures. The game clock's step is clamped to 0.1 s, so
+    // the overlay must not take it from there: it shows the wall clock.
+    let (mut s, _) = session(true);
+    let t0 = std::time::Instant::now();
+    assert!(s.gui.frame_started(t0).is_nan());
+    for i in 1..=3u32 {
+        let at = t0 + std::time::Duration::from_millis(1450 * i as u64);
+        let interval = s.gui.frame_started(at);
+        assert!((interval - 1.45).abs() < 1e-9, "{interval}");
+        s.gui.record_frame_time(interval, 12.0, 1400.0);
+    }
+    let text = s.gui.frame_stats_text();
+    assert!(text.starts_with("1 fps  frame 1450.0 ms"), "{text}");
+    assert!(text.ends_with("cpu 12.0 ms  gpu 1400.0 ms"), "{text}");
+    // After a pause the clock starts afresh (no interval spanning the pause).
+    s.gui.reset_frame_clock();
+    assert!(s.gui.frame_started(t0).is_nan());
 }

@@ -55,17 +55,49 @@ fn running_into_a_tall_obstacle_ends_the_run() {
     assert_stands_clear(&g);
 }
 
-/// At game over the runner stands against what it hit, not inside it.
+/// At game over the runner stands against what it hit, not inside it: neither its collision
+/// box nor the bound its drawn body stays in (legs mid-stride included) overlaps an obstacle.
 fn assert_stands_clear(g: &Game) {
-    let (pmin, pmax) = g.player_aabb();
-    for o in g.obstacles() {
-        let (omin, omax) = o.aabb();
-        let inside = pmin.cmplt(omax).all() && omin.cmplt(pmax).all();
-        assert!(
-            !inside,
-            "player {pmin}–{pmax} inside obstacle {omin}–{omax}"
-        );
+    for (what, (pmin, pmax)) in [("box", g.player_aabb()), ("drawn body", g.drawn_bounds())] {
+        for o in g.obstacles() {
+            let (omin, omax) = o.aabb();
+            let inside = pmin.cmplt(omax).all() && omin.cmplt(pmax).all();
+            assert!(
+                !inside,
+                "player {what} {pmin}–{pmax} inside obstacle {omin}–{omax}"
+            );
+        }
     }
+}
+
+#[test]
+fn every_game_over_leaves_the_drawn_runner_clear_of_every_obstacle() {
+    // A careless player: lane changes and jumps at random moments, so runs end head-on, by
+    // swerving into a crate's side and by landing on one; each game over is checked.
+    let mut deaths = 0;
+    for seed in 1..=40u64 {
+        let mut g = Game::new(seed);
+        g.start();
+        let mut h = seed;
+        for _ in 0..120 * TICK_HZ {
+            if g.screen() != Screen::Play {
+                break;
+            }
+            h = h
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            let r = (h >> 33) % 97;
+            g.tick(&press(|i| {
+                i.left = r == 0;
+                i.right = r == 1;
+                i.jump = r == 2 || r == 3;
+            }));
+        }
+        assert_eq!(g.screen(), Screen::GameOver, "seed {seed}");
+        assert_stands_clear(&g);
+        deaths += 1;
+    }
+    assert_eq!(deaths, 40);
 }
 
 #[test]
@@ -332,12 +364,14 @@ fn settings_save_is_atomic_and_load_tolerates_missing_files() {
     let s = Settings {
         shading: "oss".into(),
         best: 42,
+        close_camera: true,
     };
     s.save(&path).unwrap();
     assert_eq!(Settings::load(&path), s);
     let s2 = Settings {
         shading: "ward".into(),
         best: 43,
+        close_camera: false,
     };
     s2.save(&path).unwrap();
     assert_eq!(Settings::load(&path), s2);
@@ -366,4 +400,28 @@ fn gestures_become_taps_and_swipes() {
     let mut game = playing(1000.0);
     game.tick(&g((100.0, 100.0), (100.0, 100.0)));
     assert!(game.is_airborne());
+}
+
+#[test]
+fn a_bot_that_gives_up_ends_its_run_within_seconds() {
+    // `play --screenshots` relies on it to reach the game-over screen.
+    for seed in 1..=12u64 {
+        let mut g = Game::new(seed);
+        let mut bot = dermis_core::game::Bot::new(seed);
+        while g.screen() != Screen::Play || g.screen_ticks() < 2 * TICK_HZ {
+            g.tick(&bot.decide(&g));
+        }
+        bot.give_up();
+        assert!(!bot.is_playing());
+        let mut ticks = 0;
+        while g.screen() == Screen::Play {
+            g.tick(&bot.decide(&g));
+            ticks += 1;
+            assert!(
+                ticks < 15 * TICK_HZ,
+                "seed {seed}: still running after 15 s"
+            );
+        }
+        assert_eq!(g.screen(), Screen::GameOver);
+    }
 }

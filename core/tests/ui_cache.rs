@@ -253,10 +253,10 @@ fn game_screens_cycle_the_model_start_and_replay() {
     let out = frame(&mut ui, &mut game, &mut settings);
     assert!(out.settings_changed, "a new best is saved");
     assert_eq!(settings.best, game.best());
-    let panel = ui.anchored(Anchor::Center, [0.0, 0.0], [340.0, 280.0]);
-    let replay = Anchor::Bottom
-        .place(panel, [0.0, 24.0], [220.0, 56.0])
-        .center();
+    // The game-over screen's one button.
+    let buttons: Vec<Rect> = ui.button_rects().collect();
+    assert_eq!(buttons.len(), 1, "{buttons:?}");
+    let replay = buttons[0].center();
     ui.pointer_down(replay[0], replay[1]);
     ui.pointer_up(replay[0], replay[1]);
     assert!(frame(&mut ui, &mut game, &mut settings).started);

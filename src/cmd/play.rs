@@ -37,7 +37,9 @@ pub struct PlayArgs {
     /// Simulated frame rate, 1..=1000 (the game's fixed step makes results independent of it).
     #[arg(long, default_value_t = 60.0, value_parser = parse_fps, allow_hyphen_values = true)]
     pub fps: f64,
-    /// Save PNGs of the main, play and game-over screens here.
+    /// Save PNGs of the main, play and game-over screens here (needs --autoplay). Once the
+    /// play screen is saved the bot stops dodging, so the run ends; frames go on past
+    /// --frames (not measured) until all three are saved, or the command fails.
     #[arg(long)]
     pub screenshots: Option<PathBuf>,
     /// Print the summary as JSON.
@@ -48,9 +50,20 @@ pub struct PlayArgs {
 /// Frames before steady state (pipelines warm, pools filled).
 pub const WARM_UP: u64 = 120;
 
+/// With `--screenshots`: at most this many simulated seconds of frames after `--frames` to
+/// reach the screens not yet saved.
+pub const SCREENSHOT_EXTRA_S: f64 = 30.0;
+
 pub fn run(args: PlayArgs) -> Result<(), String> {
     if let Some(dir) = &args.screenshots {
         check_out_dir(dir)?;
+        if !args.autoplay {
+            return Err(
+                "--screenshots needs --autoplay (without the bot no run starts, so only the \
+                 main screen could be saved)"
+                    .into(),
+            );
+        }
     }
     let mut progress = Progress::new("play", args.frames);
     progress.begin("GPU device and pipelines");
@@ -79,9 +92,20 @@ pub fn run(args: PlayArgs) -> Result<(), String> {
     let mut live_changes = 0u64;
     let mut shots: Vec<(&str, bool)> = vec![("main", false), ("play", false), ("game-over", false)];
     let mut play_frames = 0u64;
-    // Progress every 60th frame, after the frame's measured work (its allocations are counted
-    // inside the driver's frame only).
-    for frame in 0..args.frames {
+    // Every 60th frame, after the frame's measured work (its allocations are counted inside
+    // the driver's frame only).
+    let extra = if args.screenshots.is_some() {
+        (SCREENSHOT_EXTRA_S * args.fps).ceil() as u64
+    } else {
+        0
+    };
+    let mut frame = 0u64;
+    loop {
+        let missing = args.screenshots.is_some() && shots.iter().any(|s| !s.1);
+        if frame >= args.frames && !(missing && frame < args.frames + extra) {
+            break;
+        }
+        let measured = frame < args.frames;
         let mut shoot = None;
         // After the frame's passes: copy out the first frame of each screen not yet saved.
         let mut screenshot =
@@ -109,23 +133,33 @@ pub fn run(args: PlayArgs) -> Result<(), String> {
             .run(&mut driver, &gpu, Output::Offscreen(&target))
             .map_err(|s| format!("frame not drawn: {s:?}"))?;
         let (info, stats) = (game.info, game.stats);
-        cpu_ms.push((times.submitted - times.start).as_secs_f64() * 1e3);
-        uploads.push(session.uploads as f64);
         if let Some(want) = shoot {
             let dir = args.screenshots.as_ref().expect("checked above");
             let path = dir.join(format!("{}.png", shots[want].0));
             target.read(&gpu).save_png(&path)?;
             shots[want].1 = true;
+            // The play screen is saved: the bot lets the run end, for the game-over screen.
+            if shots[want].0 == "play" {
+                if let Some(bot) = &mut session.bot {
+                    bot.give_up();
+                }
+            }
         }
+        frame += 1;
+        if !measured {
+            continue;
+        }
+        cpu_ms.push((times.submitted - times.start).as_secs_f64() * 1e3);
+        uploads.push(session.uploads as f64);
         let a = times.allocs;
         dermis_allocs.push((a.updated - a.start) as f64);
         wgpu_allocs.push((a.submitted - a.updated) as f64);
         draw_calls = draw_calls.max(stats.draw_calls);
         max_ticks = max_ticks.max(info.ticks);
-        if (frame + 1) % 60 == 0 {
-            progress.set(frame + 1, args.frames, "frames");
+        if frame.is_multiple_of(60) {
+            progress.set(frame, args.frames, "frames");
         }
-        if frame == WARM_UP {
+        if frame - 1 == WARM_UP {
             live_warm = Some(LiveObjects::read(&gpu.device));
         } else if let Some(warm) = live_warm {
             if LiveObjects::read(&gpu.device) != warm {
@@ -134,6 +168,20 @@ pub fn run(args: PlayArgs) -> Result<(), String> {
         }
     }
     progress.finish();
+    let missing: Vec<&str> = shots.iter().filter(|s| !s.1).map(|s| s.0).collect();
+    if args.screenshots.is_some() && !missing.is_empty() {
+        return Err(format!(
+            "--screenshots: no {} screen within {frame} frames ({} + {extra} more); saved: {}",
+            missing.join(", "),
+            args.frames,
+            shots
+                .iter()
+                .filter(|s| s.1)
+                .map(|s| s.0)
+                .collect::<Vec<_>>()
+                .join(", ")
+        ));
+    }
     let steady = |v: &[f64]| -> Vec<f64> { v.iter().skip(WARM_UP as usize).copied().collect() };
     let (d, wg, cpu) = (
         steady(&dermis_allocs),
@@ -159,6 +207,7 @@ pub fn run(args: PlayArgs) -> Result<(), String> {
         "gpu_objects_live_after_warm_up": live_warm,
         "frames_with_gpu_object_count_changes": live_changes,
         "screenshots": shots.iter().filter(|s| s.1).map(|s| s.0).collect::<Vec<_>>(),
+        "frames_after_measured_for_screenshots": frame - args.frames,
     });
     if args.json {
         return crate::cmd::stats::print_json(&report);
@@ -172,6 +221,13 @@ pub fn run(args: PlayArgs) -> Result<(), String> {
         g.best(),
         session.shading()
     );
+    if let Some(dir) = &args.screenshots {
+        println!(
+            "saved main.png, play.png, game-over.png in {} ({} frames past --frames, not measured)",
+            dir.display(),
+            frame - args.frames
+        );
+    }
     println!("after {WARM_UP} warm-up frames:");
     println!(
         "  dermis allocations per frame (max): {}",

@@ -13,6 +13,8 @@ pub struct Bot {
     seed: u64,
     /// Probability (per low obstacle) of a late jump, in 1/1000.
     mistakes_per_mille: u32,
+    /// Whether it dodges and jumps in a run (else it runs straight on until it hits something).
+    playing: bool,
 }
 
 impl Default for Bot {
@@ -26,6 +28,7 @@ impl Bot {
         Self {
             seed,
             mistakes_per_mille: 25,
+            playing: true,
         }
     }
 
@@ -34,7 +37,20 @@ impl Bot {
         Self {
             seed,
             mistakes_per_mille: 0,
+            playing: true,
         }
+    }
+
+    /// Stops dodging and jumping (it still starts and restarts runs): the run ends at the next
+    /// obstacle in its lane, within seconds. `play --screenshots` uses it to reach the
+    /// game-over screen once the play screen is saved.
+    pub fn give_up(&mut self) {
+        self.playing = false;
+    }
+
+    /// Whether it still dodges and jumps in a run.
+    pub fn is_playing(&self) -> bool {
+        self.playing
     }
 
     /// Ticks the bot waits on the main screen / game-over screen before starting.
@@ -55,7 +71,8 @@ impl Bot {
         match game.screen() {
             Screen::Main => input.jump = game.screen_ticks() > Self::START_DELAY,
             Screen::GameOver => input.jump = game.screen_ticks() > Self::RESTART_DELAY,
-            Screen::Play => self.play(game, &mut input),
+            Screen::Play if self.playing => self.play(game, &mut input),
+            Screen::Play => {}
         }
         input
     }

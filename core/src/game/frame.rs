@@ -50,7 +50,8 @@ impl<'a> GameFrame<'a> {
 
     /// Runs one frame with `driver` into `output` and feeds the session's governor what it
     /// cost (the larger of its CPU time and the latest GPU time, as the soak measures it),
-    /// and the frame-time overlay its times.
+    /// and the frame-time overlay the wall-clock time between frames, the CPU time and the
+    /// GPU time.
     pub fn run(
         &mut self,
         driver: &mut FrameDriver,
@@ -62,9 +63,9 @@ impl<'a> GameFrame<'a> {
             .simulated_cost_ms
             .unwrap_or_else(|| driver.cost_ms(&times));
         self.session.record_frame(cost, times.dt);
-        self.session
-            .gui
-            .record_frame_time(times.dt, times.cpu_ms(), cost);
+        let gui = &mut self.session.gui;
+        let interval = gui.frame_started(times.start);
+        gui.record_frame_time(interval, times.cpu_ms(), driver.last_gpu_ms());
         Ok(times)
     }
 }

@@ -7,6 +7,7 @@ use super::{
     Clip, Game, Input, Screen, Swipe, ACCELERATION, GRAVITY, JUMP_SPEED, LANE_FOLLOW, MAX_SPEED,
     PLAYER_HALF_DEPTH, PLAYER_HALF_WIDTH, PLAYER_HEIGHT, TICK_DT,
 };
+use crate::render::rig::CHARACTER;
 
 impl Game {
     pub(super) fn play_tick(&mut self, input: &Input) {
@@ -73,10 +74,11 @@ impl Game {
 
     /// After a hit the runner stands against the obstacle, not inside it: moved back out of
     /// the box along the axis of least penetration (its front face for a head-on hit, its
-    /// side for a lane change into it, its top for a landing), so the game-over screen shows
-    /// the runner beside the crate.
+    /// side for a lane change into it, its top for a landing) until the *drawn* body's bound
+    /// ([`CHARACTER`]'s box, which holds any pose: a running stride, swinging arms) clears
+    /// it, so the game-over screen shows the runner beside the crate, legs and all.
     fn stand_clear_of(&mut self, omin: Vec3, omax: Vec3) {
-        let (pmin, pmax) = self.player_aabb();
+        let (pmin, pmax) = self.drawn_bounds();
         let front = pmax.z - omin.z;
         let side = if self.player.x >= 0.5 * (omin.x + omax.x) {
             omax.x - pmin.x
@@ -90,7 +92,13 @@ impl Game {
         } else if side.abs() <= top {
             p.x += side + side.signum() * 1e-3;
         } else {
-            p.y += top;
+            p.y += top + 1e-3;
         }
+    }
+
+    /// The box the drawn runner stays inside whatever its pose (min, max corners, world
+    /// metres): [`CHARACTER`]'s bound at the feet.
+    pub fn drawn_bounds(&self) -> (Vec3, Vec3) {
+        CHARACTER.box_at(self.player.pos())
     }
 }

@@ -1,13 +1,14 @@
 //! The game's screens, drawn with the immediate-mode UI: main (title, shading-model option
 //! button, start, best score; laid out beside or below the showroom's close-up of the
-//! character, see [`super::showroom`]), play (score; when paused a "Paused" panel with
+//! character, see [`super::menu`]), play (score; when paused a "Paused" panel with
 //! Resume) and game over (score, best, replay), plus an optional frame-time overlay on every
 //! screen.
 //! Text that changes is formatted into reused `String`s, so a frame allocates nothing.
 
 use std::fmt::Write;
+use std::time::Instant;
 
-use super::{showroom, Game, Screen, Settings};
+use super::{menu, Game, Screen, Settings};
 use crate::ui::{Anchor, Color, Ui};
 
 const TITLE: Color = [1.0, 0.86, 0.45, 1.0];
@@ -24,31 +25,39 @@ pub struct UiOutcome {
     pub started: bool,
     /// The Resume button resumed a paused run.
     pub resumed: bool,
+    /// The play screen's "View" button: switch the camera (wide ↔ close-up).
+    pub camera_toggled: bool,
 }
 
 /// How often the frame-time overlay's numbers change (seconds of frames averaged), so the
 /// UI is not rebuilt every frame for it.
 pub const FRAME_STATS_PERIOD_S: f64 = 0.5;
 
+/// The game-over panel's share of a landscape screen's width (at least
+/// [`menu::PANEL_MIN_W`], at most [`menu::PANEL_W`]).
+pub const GAME_OVER_SHARE: f32 = 0.4;
+
 /// Per-screen text buffers, reused every frame.
 pub struct GameUi {
     option: String,
     line1: String,
     line2: String,
-    /// Show the frame-time overlay (FPS, frame time, CPU time). Off by default.
+    /// Show the frame-time overlay. Off by default.
     pub show_frame_stats: bool,
     stats_text: String,
     stats: FrameStats,
+    last_frame_start: Option<Instant>,
 }
 
 /// Frame times accumulated over [`FRAME_STATS_PERIOD_S`] for the overlay.
 #[derive(Clone, Copy, Debug, Default)]
 struct FrameStats {
-    dt_s: f64,
+    frame_s: f64,
     cpu_ms: f64,
-    cost_ms: f64,
+    gpu_ms: f64,
+    gpu_frames: u32,
     frames: u32,
-    worst_dt_s: f64,
+    worst_s: f64,
 }
 
 impl Default for GameUi {
@@ -64,43 +73,76 @@ impl GameUi {
             line1: String::with_capacity(64),
             line2: String::with_capacity(64),
             show_frame_stats: false,
-            stats_text: String::with_capacity(96),
+            stats_text: String::with_capacity(128),
             stats: FrameStats::default(),
+            last_frame_start: None,
         }
     }
 
-    /// Feeds one drawn frame's times to the overlay: the time it covered (`dt_s`, s), its CPU
-    /// time (update + upload + encode, ms) and the cost the governor was told (ms; NaN when
-    /// unknown). Every [`FRAME_STATS_PERIOD_S`] the overlay's text is rewritten (in place,
-    /// no allocation) with the averages.
-    pub fn record_frame_time(&mut self, dt_s: f64, cpu_ms: f64, cost_ms: f64) {
-        if !dt_s.is_finite() || dt_s <= 0.0 {
+    /// A frame's work began at `at`: returns the wall-clock time since the previous frame's
+    /// start (s; NaN for the first) — what the player waits between two pictures, unlike the
+    /// game clock's step, which is clamped (a 1.4 s frame advances the game by 0.1 s).
+    pub fn frame_started(&mut self, at: Instant) -> f64 {
+        let interval = self
+            .last_frame_start
+            .map_or(f64::NAN, |t| at.saturating_duration_since(t).as_secs_f64());
+        self.last_frame_start = Some(at);
+        interval
+    }
+
+    /// Forgets the previous frame's start (after a pause, the window hidden, …).
+    pub fn reset_frame_clock(&mut self) {
+        self.last_frame_start = None;
+    }
+
+    /// Feeds one drawn frame to the overlay: the wall-clock time since the frame before
+    /// (`frame_s`, s: [`GameUi::frame_started`]), its CPU time (update + upload + encode, ms)
+    /// and the GPU's time drawing a frame (ms, from timestamp queries; NaN when the device
+    /// cannot time frames). Every [`FRAME_STATS_PERIOD_S`] the overlay's text is rewritten
+    /// (in place, no allocation) with the averages:
+    ///
+    /// `50 fps  frame 20.0 ms (worst 24.1)` / `cpu 4.0 ms  gpu 6.0 ms` — frames per second
+    /// and the time between frames on the wall clock, the CPU's and the GPU's share of a frame.
+    /// The governor is told the larger of the two shares.
+    pub fn record_frame_time(&mut self, frame_s: f64, cpu_ms: f64, gpu_ms: f64) {
+        if !frame_s.is_finite() || frame_s <= 0.0 {
             return;
         }
         let s = &mut self.stats;
-        s.dt_s += dt_s;
+        s.frame_s += frame_s;
         s.cpu_ms += if cpu_ms.is_finite() { cpu_ms } else { 0.0 };
-        s.cost_ms += if cost_ms.is_finite() { cost_ms } else { 0.0 };
-        s.worst_dt_s = s.worst_dt_s.max(dt_s);
+        if gpu_ms.is_finite() && gpu_ms >= 0.0 {
+            s.gpu_ms += gpu_ms;
+            s.gpu_frames += 1;
+        }
+        s.worst_s = s.worst_s.max(frame_s);
         s.frames += 1;
-        if s.dt_s < FRAME_STATS_PERIOD_S && !self.stats_text.is_empty() {
+        if s.frame_s < FRAME_STATS_PERIOD_S && !self.stats_text.is_empty() {
             return;
         }
         let n = s.frames as f64;
         self.stats_text.clear();
         let _ = write!(
             self.stats_text,
-            "{:.0} fps  {:.1} ms (max {:.1})  cpu {:.1} ms  cost {:.1} ms",
-            n / s.dt_s,
-            s.dt_s * 1e3 / n,
-            s.worst_dt_s * 1e3,
+            "{:.0} fps  frame {:.1} ms (worst {:.1})\ncpu {:.1} ms  ",
+            n / s.frame_s,
+            s.frame_s * 1e3 / n,
+            s.worst_s * 1e3,
             s.cpu_ms / n,
-            s.cost_ms / n
         );
+        if s.gpu_frames > 0 {
+            let _ = write!(
+                self.stats_text,
+                "gpu {:.1} ms",
+                s.gpu_ms / s.gpu_frames as f64
+            );
+        } else {
+            self.stats_text.push_str("gpu not timed");
+        }
         *s = FrameStats::default();
     }
 
-    /// The overlay's current text (empty until a frame time was recorded).
+    /// The overlay's current text, two lines (empty until a frame time was recorded).
     pub fn frame_stats_text(&self) -> &str {
         &self.stats_text
     }
@@ -125,7 +167,8 @@ impl GameUi {
         out
     }
 
-    /// The frame-time overlay: one line, top left, on a dark strip.
+    /// The frame-time overlay: two lines, top left, on a dark box (below the score in play
+    /// on a screen too narrow for both side by side).
     fn frame_stats(&mut self, ui: &mut Ui) {
         let text = if self.stats_text.is_empty() {
             "-- fps"
@@ -133,44 +176,53 @@ impl GameUi {
             self.stats_text.as_str()
         };
         let size = 16.0;
-        let w = ui.text_width(text, size);
-        let r = ui.anchored(Anchor::TopLeft, [8.0, 8.0], [w + 12.0, size + 8.0]);
+        let w = text
+            .split('\n')
+            .map(|l| ui.text_width(l, size))
+            .fold(0.0, f32::max);
+        let lines = text.split('\n').count() as f32;
+        let r = ui.anchored(
+            Anchor::TopLeft,
+            [8.0, 8.0],
+            [w + 12.0, lines * (size + 2.0) + 6.0],
+        );
         ui.fill(r, [0.0, 0.0, 0.0, 0.55]);
-        ui.label_colored([r.x + 6.0, r.y + 4.0], text, size, [0.7, 1.0, 0.7, 1.0]);
+        for (i, line) in text.split('\n').enumerate() {
+            let y = r.y + 4.0 + i as f32 * (size + 2.0);
+            ui.label_colored([r.x + 6.0, y], line, size, [0.7, 1.0, 0.7, 1.0]);
+        }
     }
 
-    /// The main menu, laid out around the showroom's character ([`showroom::menu_layout`]):
-    /// landscape, the title and the panel in a column on the right; portrait, the title at
-    /// the top and the panel at the bottom; the hint on a dark strip at the bottom. On a short
-    /// safe area (a landscape phone with a keyboard, a 1280×300 window) the panel shrinks to
-    /// its buttons and the title goes first, so nothing overlaps.
+    /// The main menu, laid out around the showroom's character ([`menu::menu_layout`]):
+    /// landscape, the title, the panel and the key hints in a column on the right; portrait,
+    /// the title at the top and the panel and the hints at the bottom. On a small or short
+    /// safe area (a phone, a landscape phone with a keyboard, a 1280×300 window) the column
+    /// narrows, text shrinks to fit and pieces are dropped, so nothing overlaps.
     fn main(&mut self, ui: &mut Ui, game: &mut Game, settings: &mut Settings, out: &mut UiOutcome) {
-        let layout = showroom::menu_layout(
+        let layout = menu::menu_layout(
             ui.safe_rect(),
-            ui.text_width(showroom::TITLE, showroom::TITLE_SIZE),
-            ui.text_width(showroom::HINT, showroom::HINT_SIZE),
+            ui.text_width(menu::TITLE, menu::TITLE_SIZE),
+            menu::hint_width(ui),
         );
-        // Bottom: the hint, readable (20 units, light on a dark strip).
-        let strip = layout.hint;
-        ui.fill(strip, [0.0, 0.0, 0.0, 0.6]);
-        ui.label_colored(
-            [strip.x + 8.0, strip.y + 4.0],
-            showroom::HINT,
-            showroom::HINT_SIZE,
-            DIM,
-        );
-        if let Some(r) = layout.title {
-            ui.label_colored([r.x, r.y], showroom::TITLE, showroom::TITLE_SIZE, TITLE);
+        if let Some(strip) = layout.hint {
+            ui.fill(strip, [0.0, 0.0, 0.0, 0.6]);
+            for (i, line) in menu::HINT.iter().enumerate() {
+                if let Some(pos) = layout.hint_line(i) {
+                    ui.label_colored(pos, line, layout.hint_size, DIM);
+                }
+            }
         }
-        // The panel: full (two buttons and the best score) or compact (buttons only).
+        if let Some(r) = layout.title {
+            ui.label_colored([r.x, r.y], menu::TITLE, layout.title_size, TITLE);
+        }
+        // The panel: the two buttons, and the best score where there is room.
         let panel = layout.panel;
         ui.panel(panel);
         let model = settings.shading_model();
         self.option.clear();
         let _ = write!(self.option, "Skin: {}", model.label());
-        let gap = if layout.full { 24.0 } else { 12.0 };
         let bw = layout.button_w();
-        let option = Anchor::Top.place(panel, [0.0, gap], [bw, 56.0]);
+        let option = Anchor::Top.place(panel, [0.0, layout.gap()], [bw, menu::BUTTON_H]);
         if ui.button("shading", option, &self.option) {
             settings.set_shading_model(model.next());
             out.shading_changed = true;
@@ -181,26 +233,32 @@ impl GameUi {
             game.start();
             out.started = true;
         }
-        if layout.full {
+        if layout.best {
             self.line1.clear();
             let _ = write!(self.line1, "Best: {} m", settings.best.max(game.best()));
-            let best = Anchor::Bottom.place(panel, [0.0, 24.0], [bw, 24.0]);
-            ui.label_centered(best, &self.line1, 24.0, DIM);
+            let best = Anchor::Bottom.place(panel, [0.0, layout.gap()], [bw, menu::BEST_H]);
+            ui.label_centered(best, &self.line1, menu::BEST_H, DIM);
         }
     }
 
     fn play(&mut self, ui: &mut Ui, game: &mut Game, out: &mut UiOutcome) {
         self.line1.clear();
         let _ = write!(self.line1, "{} m", game.score());
-        let panel = ui.anchored(Anchor::Top, [0.0, 12.0], [200.0, 56.0]);
+        let panel = ui.anchored(Anchor::Top, [0.0, 12.0], [160.0, 56.0]);
         ui.panel(panel);
         ui.label_centered(panel, &self.line1, 32.0, [1.0; 4]);
+        // The camera switch, for touch screens (the C key on a keyboard).
+        let view = ui.anchored(Anchor::TopRight, [12.0, 12.0], [88.0, 48.0]);
+        if !game.is_paused() && ui.button("view", view, "View") {
+            out.camera_toggled = true;
+        }
         if game.is_paused() {
-            let panel = ui.anchored(Anchor::Center, [0.0, 0.0], [340.0, 220.0]);
+            let w = centre_panel_w(ui);
+            let panel = ui.anchored(Anchor::Center, [0.0, 0.0], [w, 220.0]);
             ui.panel(panel);
-            let head = Anchor::Top.place(panel, [0.0, 24.0], [300.0, 40.0]);
+            let head = Anchor::Top.place(panel, [0.0, 24.0], [w - 40.0, 40.0]);
             ui.label_centered(head, "PAUSED", 40.0, TITLE);
-            let resume = Anchor::Bottom.place(panel, [0.0, 24.0], [220.0, 56.0]);
+            let resume = Anchor::Bottom.place(panel, [0.0, 24.0], [(w - 40.0).min(220.0), 56.0]);
             if ui.button("resume", resume, "Resume") {
                 game.resume();
                 out.resumed = true;
@@ -208,10 +266,26 @@ impl GameUi {
         }
     }
 
+    /// The game-over panel, beside the runner so the runner standing at the crate it hit
+    /// stays in view: landscape, on the side of the screen away from it (the right unless it
+    /// died in the right-hand lane); portrait, at the top.
     fn game_over(&mut self, ui: &mut Ui, game: &mut Game, out: &mut UiOutcome) {
-        let panel = ui.anchored(Anchor::Center, [0.0, 0.0], [340.0, 280.0]);
+        let safe = ui.safe_rect();
+        let (w, anchor, offset) = if safe.w > safe.h {
+            let w = (GAME_OVER_SHARE * safe.w).clamp(menu::PANEL_MIN_W, menu::PANEL_W);
+            // Lane 1 is the runner's right: the right of the screen (the camera is behind it).
+            let anchor = if game.lane() > 0 {
+                Anchor::Left
+            } else {
+                Anchor::Right
+            };
+            (w.min(centre_panel_w(ui)), anchor, [menu::MARGIN, 0.0])
+        } else {
+            (centre_panel_w(ui), Anchor::Top, [0.0, menu::MARGIN])
+        };
+        let panel = ui.anchored(anchor, offset, [w, 240.0]);
         ui.panel(panel);
-        let head = Anchor::Top.place(panel, [0.0, 24.0], [300.0, 40.0]);
+        let head = Anchor::Top.place(panel, [0.0, 24.0], [w - 40.0, 40.0]);
         ui.label_centered(head, "GAME OVER", 40.0, TITLE);
         self.line1.clear();
         let _ = write!(self.line1, "Score: {} m", game.score());
@@ -223,12 +297,18 @@ impl GameUi {
         } else {
             let _ = write!(self.line2, "Best: {} m", game.best());
         }
-        let best = Anchor::Top.place(score, [0.0, 40.0], [300.0, 24.0]);
+        let best = Anchor::Top.place(score, [0.0, 40.0], [w - 40.0, 24.0]);
         ui.label_centered(best, &self.line2, 22.0, DIM);
-        let replay = Anchor::Bottom.place(panel, [0.0, 24.0], [220.0, 56.0]);
+        let replay = Anchor::Bottom.place(panel, [0.0, 24.0], [(w - 40.0).min(220.0), 56.0]);
         if ui.button("replay", replay, "Replay") {
             game.replay();
             out.started = true;
         }
     }
+}
+
+/// The pause panel's width (and the game-over panel's in portrait): 340 units, less on a
+/// screen narrower than that.
+fn centre_panel_w(ui: &Ui) -> f32 {
+    (ui.safe_rect().w - 2.0 * menu::MARGIN).clamp(240.0, 340.0)
 }

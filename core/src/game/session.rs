@@ -31,7 +31,28 @@ pub enum Key {
     Pause,
     /// Show / hide the frame-time overlay.
     FrameStats,
+    /// Switch the play camera between the wide follow camera and its close-up (the play
+    /// screen's "View" button does the same).
+    Camera,
 }
+
+/// The wide follow camera: eye offset and look-at point from the runner's feet (x right, y
+/// up, z forward): the track far ahead, the runner small.
+pub const FOLLOW_OFFSET: Vec3 = Vec3::new(0.0, 2.2, -4.5);
+pub const FOLLOW_LOOK: Vec3 = Vec3::new(0.0, 1.0, 4.0);
+/// The close-up follow camera: just behind and above the runner's head (centred, so the
+/// runner stays in view on a narrow portrait screen), so the body from the hips up fills much
+/// of the screen and its skin — shoulders, arms, neck, ears, lit by the key light from the
+/// front right, so rims and ears are backlit — shows the chosen model, while the lane ahead
+/// stays in view over the head.
+pub const CLOSE_OFFSET: Vec3 = Vec3::new(0.0, 1.95, -1.3);
+pub const CLOSE_LOOK: Vec3 = Vec3::new(0.0, 1.0, 3.5);
+/// The close-up's stiffer springs (1/s): a spring trails a runner at speed u by 2u/ω, 4 m at
+/// 12 m/s with the wide camera's; these keep the close-up within about a metre of its offset.
+pub const CLOSE_EYE_OMEGA: f32 = 24.0;
+pub const CLOSE_LOOK_OMEGA: f32 = 30.0;
+/// Seconds the camera takes to glide between the two.
+pub const CAMERA_SWITCH_S: f32 = 0.5;
 
 /// The screen the UI is laid out for.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -77,6 +98,8 @@ pub struct Session {
     pub governor: Governor,
     /// What this frame needs (computed by [`Session::update`]).
     pub needs: Needs,
+    /// 0: the wide follow camera, 1: the close-up; in between while switching.
+    close: f32,
 }
 
 impl Session {
@@ -93,8 +116,12 @@ impl Session {
             .unwrap_or_default();
         let mut game = Game::new(seed);
         game.set_best(settings.best);
-        let mut camera = FollowCamera::new(Vec3::new(0.0, 2.2, -4.5), Vec3::new(0.0, 1.0, 4.0));
-        camera.snap(game.camera_target().0, 0.0);
+        let close = if settings.close_camera { 1.0 } else { 0.0 };
+        let mut camera = FollowCamera::new(
+            FOLLOW_OFFSET.lerp(CLOSE_OFFSET, close),
+            FOLLOW_LOOK.lerp(CLOSE_LOOK, close),
+        );
+        camera.snap(camera_target(&game, close).0, 0.0);
         let showroom = Showroom::new(game.screen(), &camera);
         Self {
             game,
@@ -123,7 +150,19 @@ impl Session {
             ),
             needs: Needs::default(),
             settings,
+            close,
         }
+    }
+
+    /// How far the play camera is into its close-up (0 wide, 1 close).
+    pub fn close_up(&self) -> f32 {
+        self.close
+    }
+
+    /// Switches the play camera (wide ↔ close-up) and saves the choice.
+    pub fn toggle_camera(&mut self) {
+        self.settings.close_camera = !self.settings.close_camera;
+        self.save_settings();
     }
 
     /// Sets the governor's configuration (frame budget) and switches: `budget` the
@@ -196,6 +235,7 @@ impl Session {
                 self.pending = Input::NONE;
             }
             Key::FrameStats => self.gui.show_frame_stats = !self.gui.show_frame_stats,
+            Key::Camera => self.toggle_camera(),
         }
     }
 
@@ -229,7 +269,13 @@ impl Session {
     pub fn pointer_up(&mut self, x: f32, y: f32) {
         self.ui.pointer_up(x, y);
         if let Some(down) = self.pointer_down.take() {
-            if self.game.screen() == Screen::Play && !self.game.is_paused() {
+            // A press on a button (the view switch) is the button's, not a jump.
+            let s = self.viewport.scale.max(1e-3);
+            let on_button = self
+                .ui
+                .button_rects()
+                .any(|r| r.contains([down.0 / s, down.1 / s]));
+            if self.game.screen() == Screen::Play && !self.game.is_paused() && !on_button {
                 let gesture = Input::from_gesture(down, (x, y), 24.0 * self.viewport.scale);
                 self.pending.merge(&gesture);
             }
@@ -260,10 +306,23 @@ impl Session {
             }
             None => self.game.update(dt, &input),
         };
-        let (target, yaw) = self.game.camera_target();
         let (feet, _) = self.game.player_transform();
         // Paused: the camera holds still too.
         let camera_dt = if self.game.is_paused() { 0.0 } else { dt };
+        let want = if self.settings.close_camera { 1.0 } else { 0.0 };
+        let step = camera_dt.max(0.0) / CAMERA_SWITCH_S;
+        self.close = if self.close < want {
+            (self.close + step).min(want)
+        } else {
+            (self.close - step).max(want)
+        };
+        let k = self.close * self.close * (3.0 - 2.0 * self.close);
+        self.camera.offset = FOLLOW_OFFSET.lerp(CLOSE_OFFSET, k);
+        self.camera.look_offset = FOLLOW_LOOK.lerp(CLOSE_LOOK, k);
+        let lerp = |a: f32, b: f32| a + (b - a) * k;
+        self.camera.eye.omega = lerp(FollowCamera::EYE_OMEGA, CLOSE_EYE_OMEGA);
+        self.camera.look.omega = lerp(FollowCamera::LOOK_OMEGA, CLOSE_LOOK_OMEGA);
+        let (target, yaw) = camera_target(&self.game, k);
         self.camera
             .update(camera_dt, target, yaw, &CHARACTER.capsule_at(feet, 1.0));
         self.showroom
@@ -288,6 +347,9 @@ impl Session {
             .gui
             .draw(&mut self.ui, &mut self.game, &mut self.settings);
         self.ui.end();
+        if outcome.camera_toggled {
+            self.toggle_camera();
+        }
         if outcome.settings_changed {
             self.save_settings();
         }
@@ -373,6 +435,16 @@ impl Session {
             props: true,
         }
     }
+}
+
+/// What the follow camera tracks, `close` (0..1) into the close-up: the wide camera follows
+/// the runner's feet on the ground half-way towards its lane ([`Game::camera_target`]); the
+/// close-up, whose view at the runner is narrow, follows it all the way, up into its jumps
+/// too (so the head stays in the picture).
+fn camera_target(game: &Game, close: f32) -> (Vec3, f32) {
+    let (target, yaw) = game.camera_target();
+    let (feet, _) = game.player_transform();
+    (target + (feet - target) * close, yaw)
 }
 
 #[cfg(test)]

@@ -1,5 +1,6 @@
-//! Persistent settings: the chosen shading model and the best score, as a tiny `key=value`
-//! text file written atomically (temp file + rename).
+//! Persistent settings: the chosen shading model, the best score and the play camera (the
+//! follow camera or its close-up), as a tiny `key=value` text file written atomically (temp
+//! file + rename).
 
 use std::path::Path;
 
@@ -10,6 +11,9 @@ pub struct Settings {
     /// A [`ShadingModel`] registry name.
     pub shading: String,
     pub best: u32,
+    /// Play with the close-up camera (the runner large, its skin in view) rather than the
+    /// wide follow camera.
+    pub close_camera: bool,
 }
 
 impl Default for Settings {
@@ -17,6 +21,7 @@ impl Default for Settings {
         Self {
             shading: ShadingModel::ALL[0].name().to_string(),
             best: 0,
+            close_camera: false,
         }
     }
 }
@@ -34,8 +39,10 @@ impl Settings {
 
     pub fn to_text(&self) -> String {
         format!(
-            "# dermis settings\nshading={}\nbest={}\n",
-            self.shading, self.best
+            "# dermis settings\nshading={}\nbest={}\ncamera={}\n",
+            self.shading,
+            self.best,
+            if self.close_camera { "close" } else { "follow" }
         )
     }
 
@@ -75,6 +82,13 @@ impl Settings {
                     Err(_) => dropped.push(format!(
                         "line {n}: `{shown}` ignored (best must be a whole number in 0..={})",
                         u32::MAX
+                    )),
+                },
+                "camera" => match value {
+                    "close" => s.close_camera = true,
+                    "follow" => s.close_camera = false,
+                    _ => dropped.push(format!(
+                        "line {n}: `{shown}` ignored (camera is `follow` or `close`)"
                     )),
                 },
                 _ => dropped.push(format!("line {n}: `{shown}` ignored (unknown key)")),
@@ -124,10 +138,18 @@ mod tests {
 
     #[test]
     fn parse_reports_what_it_drops() {
-        let (s, dropped) =
-            Settings::parse("# c\n\nshading=bogus\nbest=-5\nbest=7\njunk\nextra=1\nshading=oss");
-        assert_eq!((s.best, s.shading.as_str()), (7, "oss"));
-        assert_eq!(dropped.len(), 4, "{dropped:?}");
+        let (s, dropped) = Settings::parse(
+            "# c\n\nshading=bogus\nbest=-5\nbest=7\njunk\nextra=1\nshading=oss\ncamera=close\ncamera=up",
+        );
+        assert_eq!(
+            (s.best, s.shading.as_str(), s.close_camera),
+            (7, "oss", true)
+        );
+        assert_eq!(dropped.len(), 5, "{dropped:?}");
+        assert!(
+            dropped[4].starts_with("line 10: `camera=up`"),
+            "{dropped:?}"
+        );
         assert!(
             dropped[0].starts_with("line 3: `shading=bogus`"),
             "{dropped:?}"

@@ -4,7 +4,7 @@
 //! light bleeding past the terminator, translucency — show as the light moves. The menu's
 //! panel sits beside the character (landscape) or below it (portrait), inside the safe area,
 //! and the camera's lens is shifted so the character lands in the part of the screen the
-//! panel leaves free ([`menu_layout`]'s `stage`). When a run starts the camera swings round
+//! panel leaves free ([`super::menu::menu_layout`]'s `stage`). When a run starts the camera swings round
 //! to the follow camera in [`BLEND_S`] (and back when the menu returns); with the blend done
 //! the follow camera is drawn unchanged. Everything here is plain arithmetic: no allocation.
 
@@ -12,25 +12,11 @@ use std::f32::consts::{PI, TAU};
 
 use glam::{Vec2, Vec3};
 
+use super::menu::layout_for;
 use super::{Game, Screen, Viewport};
 use crate::camera::{CameraPose, FollowCamera};
 use crate::render::rig::{key_light, CHARACTER, KEY_LIGHT_OFFSET};
-use crate::ui::{Anchor, Rect, Ui};
-
-/// Space between the menu's pieces and the safe area's edges (logical units).
-pub const MARGIN: f32 = 12.0;
-/// The menu panel's width, its height with the best score and its compact height (buttons).
-pub const PANEL_W: f32 = 340.0;
-pub const PANEL_FULL_H: f32 = 250.0;
-pub const PANEL_COMPACT_H: f32 = 2.0 * 56.0 + 3.0 * 12.0;
-pub const TITLE: &str = "XICOM RUNNER";
-pub const TITLE_SIZE: f32 = 44.0;
-pub const HINT: &str = "Space/tap: jump   Arrows/swipe: change lane   P: pause";
-pub const HINT_SIZE: f32 = 20.0;
-/// The narrowest stage that puts the panel beside the character rather than below it.
-const MIN_SIDE_STAGE_W: f32 = 240.0;
-/// Portrait: the stage keeps at least this height before the panel drops its best score.
-const MIN_STAGE_H: f32 = 200.0;
+use crate::ui::{Rect, Ui};
 
 /// Camera ↔ showroom blend duration (s).
 pub const BLEND_S: f32 = 0.8;
@@ -55,132 +41,6 @@ const VIEW_DIR: Vec3 = Vec3::new(0.35, 0.12, 1.0);
 /// Whether `screen` shows the showroom (the main menu, with the model option).
 pub fn is_showroom(screen: Screen) -> bool {
     matches!(screen, Screen::Main)
-}
-
-/// Where the main menu's pieces go, in logical units.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct MenuLayout {
-    /// The title's rectangle; `None` on a screen too short for it.
-    pub title: Option<Rect>,
-    /// The hint's dark strip (the text starts 8 units in, 4 down).
-    pub hint: Rect,
-    pub panel: Rect,
-    /// Whether the panel has room for the best score (else only its two buttons).
-    pub full: bool,
-    /// Where the character is shown: clear of the panel, the title and the hint (on a window
-    /// too small for that, the whole safe area).
-    pub stage: Rect,
-    /// Landscape (panel beside the stage) or portrait (panel below it).
-    pub side: bool,
-}
-
-impl MenuLayout {
-    /// The widgets' width inside the panel.
-    pub fn button_w(&self) -> f32 {
-        (self.panel.w - 40.0).min(300.0)
-    }
-}
-
-/// The main menu's layout in `safe` (logical units) for a title `title_w` and a hint
-/// `hint_w` wide. Landscape: the title and the panel in a column on the right, the character
-/// on the left. Portrait (or too narrow for a column): the title at the top, the panel at the
-/// bottom above the hint, the character between them. The hint is always at the bottom.
-pub fn menu_layout(safe: Rect, title_w: f32, hint_w: f32) -> MenuLayout {
-    let hw = hint_w.min(safe.w - 2.0 * MARGIN).max(0.0);
-    let hint = Anchor::Bottom.place(safe, [0.0, MARGIN], [hw + 16.0, HINT_SIZE + 8.0]);
-    let below = hint.y - MARGIN;
-    let title_band = MARGIN + TITLE_SIZE + MARGIN;
-    let room = |top: f32| below - top;
-    let show_title = room(safe.y + title_band) >= PANEL_COMPACT_H;
-    let top = if show_title {
-        safe.y + title_band
-    } else {
-        safe.y + MARGIN
-    };
-    let col_w = PANEL_W.max(title_w);
-    let side = safe.w > safe.h && safe.w >= col_w + 3.0 * MARGIN + MIN_SIDE_STAGE_W;
-    let (panel, title, stage, full) = if side {
-        let col_x = safe.x + safe.w - 2.0 * MARGIN - col_w;
-        let full = room(top) >= PANEL_FULL_H;
-        let h = if full { PANEL_FULL_H } else { PANEL_COMPACT_H };
-        let y = top + ((room(top) - h) * 0.5).max(0.0);
-        let panel = Rect::new(col_x + (col_w - PANEL_W) * 0.5, y, PANEL_W, h);
-        let title = Rect::new(
-            col_x + (col_w - title_w) * 0.5,
-            safe.y + MARGIN,
-            title_w,
-            TITLE_SIZE,
-        );
-        let x0 = safe.x + MARGIN;
-        let y0 = safe.y + MARGIN;
-        let stage = Rect::new(
-            x0,
-            y0,
-            (col_x - MARGIN - x0).max(1.0),
-            (below - y0).max(1.0),
-        );
-        (panel, title, stage, full)
-    } else {
-        let w = PANEL_W.min(safe.w - 2.0 * MARGIN).max(0.0);
-        let full = room(top) >= PANEL_FULL_H + MIN_STAGE_H;
-        let h = if full { PANEL_FULL_H } else { PANEL_COMPACT_H };
-        // At the bottom above the hint; on a short screen right under the title.
-        let y = (below - h).max(top);
-        let panel = Rect::new(safe.x + (safe.w - w) * 0.5, y, w, h);
-        let title = Anchor::Top.place(safe, [0.0, MARGIN], [title_w, TITLE_SIZE]);
-        let stage = if y - MARGIN - top >= 0.5 * MIN_STAGE_H {
-            Rect::new(
-                safe.x + MARGIN,
-                top,
-                (safe.w - 2.0 * MARGIN).max(1.0),
-                y - MARGIN - top,
-            )
-        } else {
-            // No room beside or above the panel (a tiny window): the whole safe area.
-            safe.inset(MARGIN.min(0.25 * safe.w.min(safe.h)))
-        };
-        (panel, title, stage, full)
-    };
-    MenuLayout {
-        title: show_title.then_some(title),
-        hint,
-        panel,
-        full,
-        stage,
-        side,
-    }
-}
-
-/// The whole screen and the safe area of `viewport` in logical units (as [`Ui::begin`] sees
-/// them).
-pub fn viewport_rects(viewport: &Viewport) -> (Rect, Rect) {
-    let s = if viewport.scale.is_finite() && viewport.scale > 0.0 {
-        viewport.scale
-    } else {
-        1.0
-    };
-    let (w, h) = (viewport.width.max(1) as f32, viewport.height.max(1) as f32);
-    let i = viewport.insets;
-    (
-        Rect::new(0.0, 0.0, w / s, h / s),
-        Rect::new(
-            i.left / s,
-            i.top / s,
-            ((w - i.left - i.right) / s).max(0.0),
-            ((h - i.top - i.bottom) / s).max(0.0),
-        ),
-    )
-}
-
-/// The menu's layout for `viewport`, measured with `ui`'s font.
-pub fn layout_for(ui: &Ui, viewport: &Viewport) -> (Rect, MenuLayout) {
-    let (screen, safe) = viewport_rects(viewport);
-    let layout = menu_layout(
-        safe,
-        ui.text_width(TITLE, TITLE_SIZE),
-        ui.text_width(HINT, HINT_SIZE),
-    );
-    (screen, layout)
 }
 
 /// The showroom camera for a character standing at `feet` (facing +z) on a screen of
