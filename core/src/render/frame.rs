@@ -49,15 +49,14 @@ pub struct FrameUniform {
 }
 
 impl FrameUniform {
+    /// The frame's uniform: the camera, the light, the output (exposure, manual sRGB encode,
+    /// raw radiance) and the shadow map with its penumbra grid (0: none).
     pub fn new(
         view_proj: Mat4,
         camera_pos: Vec3,
         light: &Light,
-        exposure: f32,
-        manual_srgb: bool,
-        raw: bool,
-        shadow: &ShadowView,
-        penumbra_grid: u32,
+        (exposure, manual_srgb, raw): (f32, bool, bool),
+        (shadow, penumbra_grid): (&ShadowView, u32),
     ) -> Self {
         Self {
             view_proj: view_proj.to_cols_array_2d(),

@@ -375,11 +375,8 @@ impl Renderer {
             view.view_proj,
             view.camera_pos,
             &view.light,
-            view.exposure,
-            manual_srgb,
-            raw,
-            &shadow,
-            grid,
+            (view.exposure, manual_srgb, raw),
+            (&shadow, grid),
         );
         queue.write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(&u));
     }
