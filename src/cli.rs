@@ -21,10 +21,6 @@ pub struct Cli {
     pub window: WindowArgs,
 }
 
-/// The shading model `render` and `demo` use when none is given: the measured, spatial one
-/// (the best-looking accurate model; `oss` as printed is one `--shading oss` away).
-pub const DEFAULT_SHADING: &str = "tabulated";
-
 #[derive(clap::Args, Debug, Clone)]
 pub struct WindowArgs {
     /// Quit after this many presented frames (at least 1).
@@ -37,7 +33,8 @@ pub struct WindowArgs {
         long,
         value_parser = parse_model,
         help = args::shading_help(&format!(
-            "Shading model (default: the player's saved choice in the game, `{DEFAULT_SHADING}` in the demo)"
+            "Shading model (default: the player's saved choice in the game, else `{}`)",
+            ShadingModel::DEFAULT
         ))
     )]
     pub shading: Option<ShadingModel>,
@@ -152,7 +149,7 @@ pub fn run(cli: Cli) -> Result<(), String> {
         Some(Command::Demo(mut args)) => {
             check_window(&args)?;
             if args.shading.is_none() {
-                args.shading = Some(parse_model(DEFAULT_SHADING)?);
+                args.shading = Some(ShadingModel::DEFAULT);
             }
             crate::window::run_demo(args)
         }

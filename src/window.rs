@@ -80,7 +80,7 @@ pub fn run_game(args: WindowArgs) -> Result<(), String> {
 pub fn run_demo(args: WindowArgs) -> Result<(), String> {
     let shading = args
         .shading
-        .unwrap_or(dermis_core::shading::ShadingModel::Oss);
+        .unwrap_or(dermis_core::shading::ShadingModel::DEFAULT);
     let demo = Demo::load(
         &crate::paths::assets_dir(),
         args.model.as_deref(),
@@ -154,7 +154,12 @@ impl App {
         match &mut self.mode {
             Mode::Game {
                 assets, gpu: slot, ..
-            } => *slot = Some(Box::new(GameGpu::new(&gpu, format, assets)?)),
+            } => {
+                let gg = GameGpu::new(&gpu, format, assets)?;
+                // The game's material: `--material` (skin1 unless given).
+                gg.renderer.set_material(&gpu.queue, &self.args.material);
+                *slot = Some(Box::new(gg));
+            }
             Mode::Demo { demo, renderer } => {
                 let mut r = Renderer::new(&gpu, format);
                 demo.upload(&gpu, &mut r)?;

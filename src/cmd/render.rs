@@ -15,7 +15,7 @@ use crate::cmd::args::{check_out_file, parse_time, shading_help};
 pub struct RenderArgs {
     #[arg(
         long,
-        default_value = crate::cli::DEFAULT_SHADING,
+        default_value_t = ShadingModel::DEFAULT,
         value_parser = parse_model,
         help = shading_help("Shading model of the character")
     )]

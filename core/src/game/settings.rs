@@ -7,35 +7,35 @@ use crate::shading::ShadingModel;
 
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Settings {
-    /// A [`ShadingModel`] registry name.
-    pub shading: String,
+    /// The chosen model (its registry name only in the file).
+    pub shading: ShadingModel,
     pub best: u32,
 }
 
 impl Default for Settings {
     fn default() -> Self {
         Self {
-            shading: ShadingModel::ALL[0].name().to_string(),
+            shading: ShadingModel::DEFAULT,
             best: 0,
         }
     }
 }
 
 impl Settings {
-    /// The chosen model (the default if the stored name is unknown).
+    /// The chosen model ([`ShadingModel::DEFAULT`] until one is chosen or read).
     pub fn shading_model(&self) -> ShadingModel {
-        ShadingModel::from_name(&self.shading).unwrap_or(ShadingModel::ALL[0])
+        self.shading
     }
 
     pub fn set_shading_model(&mut self, model: ShadingModel) {
-        self.shading.clear();
-        self.shading.push_str(model.name());
+        self.shading = model;
     }
 
     pub fn to_text(&self) -> String {
         format!(
             "# dermis settings\nshading={}\nbest={}\n",
-            self.shading, self.best
+            self.shading.name(),
+            self.best
         )
     }
 
@@ -126,7 +126,7 @@ mod tests {
     fn parse_reports_what_it_drops() {
         let (s, dropped) =
             Settings::parse("# c\n\nshading=bogus\nbest=-5\nbest=7\njunk\nextra=1\nshading=oss");
-        assert_eq!((s.best, s.shading.as_str()), (7, "oss"));
+        assert_eq!((s.best, s.shading), (7, ShadingModel::Oss));
         assert_eq!(dropped.len(), 4, "{dropped:?}");
         assert!(
             dropped[0].starts_with("line 3: `shading=bogus`"),
