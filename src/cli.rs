@@ -23,10 +23,6 @@ pub struct Cli {
     pub game: GameArgs,
 }
 
-/// The shading model `render` and `demo` use when none is given: the measured, spatial one
-/// (the best-looking accurate model; `oss` as printed is one `--shading oss` away).
-pub const DEFAULT_SHADING: &str = "tabulated";
-
 /// What every window takes (the game's and the demo's).
 #[derive(clap::Args, Debug, Clone)]
 pub struct WindowArgs {
@@ -49,7 +45,10 @@ pub struct GameArgs {
     #[arg(
         long,
         value_parser = parse_model,
-        help = args::shading_help("Shading model (default: the player's saved choice)")
+        help = args::shading_help(&format!(
+            "Shading model (default: the player's saved choice, else `{}`)",
+            ShadingModel::DEFAULT
+        ))
     )]
     pub shading: Option<ShadingModel>,
     /// Let the autoplay bot play.
@@ -71,7 +70,7 @@ pub struct DemoArgs {
     pub window: WindowArgs,
     #[arg(
         long,
-        default_value = DEFAULT_SHADING,
+        default_value_t = ShadingModel::DEFAULT,
         value_parser = parse_model,
         help = args::shading_help("Initial shading model")
     )]

@@ -24,6 +24,9 @@ fn play_creates_nothing_and_wgpu_allocations_do_not_grow() {
     let mut gg = GameGpu::new(&gpu, OFFSCREEN_FORMAT, &assets).unwrap();
     let target = Offscreen::new(&gpu, w, h);
     let mut session = Session::new(&assets.character, 7, None, true);
+    // From the first model in menu order, whatever the default: both measured windows below
+    // then hold one screen-space model each, so their allocation counts compare.
+    session.settings.set_shading_model(ShadingModel::ALL[0]);
     // The shells' frame driver, at a fixed step, waiting for the GPU after each frame.
     let mut driver = FrameDriver::new(Clock::Fixed(1.0 / 60.0))
         .with_alloc_counter(dermis_core::heap::allocations);

@@ -77,7 +77,9 @@ fn soak_writes_report_chart_and_summary() {
     assert_eq!(report["status"], "complete");
     let config = &report["config"];
     assert_eq!(config["seconds"].as_f64(), Some(30.0));
-    assert_eq!(config["tiers"][0], "oss");
+    // No --shading: the one default is tier 0.
+    let default = dermis_core::shading::ShadingModel::DEFAULT.name();
+    assert_eq!(config["tiers"][0], default);
     assert!(config["adapter"].is_string());
     let seconds = report["seconds"].as_array().expect("seconds");
     assert!(!seconds.is_empty());

@@ -272,7 +272,7 @@ fn soak_config(app: &AndroidApp, extras: &Extras) -> (Option<SoakConfig>, Option
                 Ok(m) => m,
                 Err(e) => return (None, Some(e)),
             },
-            None => ShadingModel::Oss,
+            None => ShadingModel::DEFAULT,
         };
         (extras.soak_seconds as f64, shading, None)
     } else {

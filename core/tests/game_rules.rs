@@ -336,7 +336,7 @@ fn human_input_survives_frames_without_ticks() {
 #[test]
 fn settings_round_trip_and_survive_garbage() {
     let mut s = Settings::default();
-    assert_eq!(s.shading_model(), ShadingModel::ALL[0]);
+    assert_eq!(s.shading_model(), ShadingModel::DEFAULT);
     s.set_shading_model(ShadingModel::Oss);
     s.best = 1234;
     assert_eq!(Settings::from_text(&s.to_text()), s);
@@ -353,7 +353,7 @@ fn settings_round_trip_and_survive_garbage() {
         assert_eq!(g, Settings::default(), "{garbage:?}");
     }
     let partial = Settings::from_text("junk\n best = 7 \nshading=dipole\nextra=1");
-    assert_eq!((partial.best, partial.shading.as_str()), (7, "dipole"));
+    assert_eq!((partial.best, partial.shading), (7, ShadingModel::Dipole));
 }
 
 #[test]
@@ -362,14 +362,14 @@ fn settings_save_is_atomic_and_load_tolerates_missing_files() {
     let path = dir.join("sub").join("settings.txt");
     assert_eq!(Settings::load(&path), Settings::default());
     let s = Settings {
-        shading: "oss".into(),
+        shading: ShadingModel::Oss,
         best: 42,
         close_camera: true,
     };
     s.save(&path).unwrap();
     assert_eq!(Settings::load(&path), s);
     let s2 = Settings {
-        shading: "ward".into(),
+        shading: ShadingModel::Ward,
         best: 43,
         close_camera: false,
     };

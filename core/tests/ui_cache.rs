@@ -218,8 +218,14 @@ fn game_screens_cycle_the_model_start_and_replay() {
         let out = frame(&mut ui, &mut game, &mut settings);
         assert!(out.shading_changed && out.settings_changed);
     }
-    assert_eq!(seen, ShadingModel::ALL.to_vec(), "cycles every model");
-    assert_eq!(settings.shading_model(), ShadingModel::ALL[0]);
+    // From the default, in menu order, wrapping.
+    let first = ShadingModel::ALL
+        .iter()
+        .position(|m| *m == ShadingModel::DEFAULT);
+    let mut order = ShadingModel::ALL.to_vec();
+    order.rotate_left(first.unwrap_or(0));
+    assert_eq!(seen, order, "cycles every model");
+    assert_eq!(settings.shading_model(), ShadingModel::DEFAULT);
     let c = start.center();
     ui.pointer_down(c[0], c[1]);
     ui.pointer_up(c[0], c[1]);

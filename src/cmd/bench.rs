@@ -41,6 +41,9 @@ pub enum BenchKind {
         /// Print JSON instead of the table.
         #[arg(long)]
         json: bool,
+        /// Only the time to first frame and its breakdown (no CPU or GPU rounds).
+        #[arg(long)]
+        first_frame_only: bool,
     },
     /// The accuracy-vs-time table: errors against Monte Carlo, GPU cost, shader size.
     Shading(crate::cmd::bench_shading::ShadingArgs),
@@ -55,7 +58,8 @@ pub fn run(args: BenchArgs) -> Result<(), String> {
             frames,
             out,
             json,
-        } => frame(rounds, frames, out, json),
+            first_frame_only,
+        } => frame(rounds, frames, out, json, first_frame_only),
         BenchKind::Shading(args) => crate::cmd::bench_shading::run(args),
         BenchKind::Effects(args) => crate::cmd::bench_effects::run(args),
     }
@@ -66,26 +70,75 @@ fn frame(
     frames: usize,
     out: Option<PathBuf>,
     print_json: bool,
+    first_frame_only: bool,
 ) -> Result<(), String> {
     if let Some(path) = &out {
         check_out_file(path, Some("json"))?;
     }
     let start = Instant::now();
-    // Steps: first frame, close-up, the CPU frames (in eighths), the GPU rounds, the blob
-    // shadows' coverage and their rounds.
-    let mut progress = Progress::new("bench frame", (3 + 8 + 2 * rounds) as u64);
+    let mut lap = Instant::now();
+    let mut split = || {
+        let ms = lap.elapsed().as_secs_f64() * 1e3;
+        lap = Instant::now();
+        ms
+    };
     let assets = SceneAssets::load(&crate::paths::assets_dir(), None).map_err(|e| e.to_string())?;
+    let load_ms = split();
     let gpu = Gpu::headless().map_err(|e| e.to_string())?;
+    let device_ms = split();
+    // Every model's tables for the material (the shipped kernels and LUTs, read once and
+    // cached): what loading the scene then finds ready.
+    for m in ShadingModel::ALL {
+        m.params(&SKIN1);
+        m.kernel(&SKIN1);
+        m.lut(&SKIN1);
+    }
+    let tables_ms = split();
     let (w, h) = (1280, 720);
     let mut still = StillRenderer::new(&gpu, &assets, w, h)?;
+    let pipelines_ms = split();
     let first = Shot {
         clip: 1,
         time: 0.2,
-        ..Shot::new(ShadingModel::Oss, SKIN1)
+        ..Shot::new(ShadingModel::DEFAULT, SKIN1)
     };
     still.render(&gpu, &assets, &first)?;
+    let render_ms = split();
     let first_frame_ms = start.elapsed().as_secs_f64() * 1e3;
-    progress.step("first frame");
+    let breakdown = json!({
+        "load_ms": load_ms,
+        "device_ms": device_ms,
+        "tables_ms": tables_ms,
+        "pipelines_ms": pipelines_ms,
+        "first_render_ms": render_ms,
+        "model": ShadingModel::DEFAULT.name(),
+    });
+    let breakdown_text = format!(
+        "load {load_ms:.0} + device {device_ms:.0} + tables {tables_ms:.0} + pipelines and \
+         scene upload {pipelines_ms:.0} + first render ({}) {render_ms:.0}",
+        ShadingModel::DEFAULT.name()
+    );
+    if first_frame_only {
+        let report = json!({
+            "adapter": gpu.adapter_name(),
+            "time_to_first_frame_ms": first_frame_ms,
+            "first_frame": breakdown,
+        });
+        let text = serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?;
+        if let Some(path) = &out {
+            std::fs::write(path, &text).map_err(|e| format!("{}: {e}", path.display()))?;
+        }
+        if print_json {
+            println!("{text}");
+        } else {
+            println!("adapter: {}", gpu.adapter_name());
+            println!("time to first frame: {first_frame_ms:.0} ms ({breakdown_text} ms)");
+        }
+        return Ok(());
+    }
+    // Steps: close-up, the CPU frames (in eighths), the GPU rounds, the blob shadows'
+    // coverage and their rounds.
+    let mut progress = Progress::new("bench frame", (2 + 8 + 2 * rounds) as u64);
 
     // Close-up: the character alone, zoomed until it covers at least 40 % of the frame.
     let mut close = Shot {
@@ -115,7 +168,7 @@ fn frame(
             .device
             .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
         let draw = DrawSet {
-            shading: Some(ShadingModel::Oss),
+            shading: Some(ShadingModel::DEFAULT),
             character: true,
             props: true,
         };
@@ -153,8 +206,14 @@ fn frame(
     };
 
     // Blob shadows: the same close-up with the showroom floor (and its props), shadows off
-    // vs on, for a one-pass and a screen-space model.
-    let blob_models = [ShadingModel::Ward, ShadingModel::Burley];
+    // vs on, for the first one-pass and the first screen-space model of the registry.
+    let first_with = |screen_space: bool| {
+        ShadingModel::ALL
+            .into_iter()
+            .find(|m| m.effects().screen_space == screen_space)
+            .unwrap_or(ShadingModel::DEFAULT)
+    };
+    let blob_models = [first_with(false), first_with(true)];
     let (blob_pixels, blob_ms) = if still.enable_blob_shadows(&gpu) {
         let pixels = blob_shadow_coverage(&gpu, &mut still, &assets, &close)?;
         progress.step("blob shadows framed");
@@ -172,7 +231,8 @@ fn frame(
     };
     progress.finish();
     let name = |m: &Option<ShadingModel>| m.map_or("unlit", |m| m.name());
-    let ward = &gpu_ms[0];
+    let ward_at = models.iter().position(|m| *m == Some(ShadingModel::Ward));
+    let ward = &gpu_ms[ward_at.unwrap_or(0)];
     let per_model: Vec<serde_json::Value> = models
         .iter()
         .zip(&gpu_ms)
@@ -207,6 +267,7 @@ fn frame(
         "size": [w, h],
         "character_coverage": coverage,
         "time_to_first_frame_ms": first_frame_ms,
+        "first_frame": breakdown,
         "cpu_frame_ms": {"p50": percentile(&cpu_ms, 0.5), "p95": percentile(&cpu_ms, 0.95), "mean": cpu_ms.iter().sum::<f64>() / cpu_ms.len() as f64},
         "gpu_rounds": if gpu.timestamps { rounds } else { 0 },
         "models": per_model,
@@ -222,9 +283,7 @@ fn frame(
         return Ok(());
     }
     println!("adapter: {}  ({label})", gpu.adapter_name());
-    println!(
-        "time to first frame: {first_frame_ms:.0} ms (load + device + pipelines + first render)"
-    );
+    println!("time to first frame: {first_frame_ms:.0} ms ({breakdown_text} ms)");
     println!(
         "CPU per frame (pose + palettes + encode): p50 {:.3} ms, p95 {:.3} ms over {frames} frames",
         percentile(&cpu_ms, 0.5),

@@ -18,7 +18,7 @@ use crate::cmd::progress::Progress;
 pub struct RenderArgs {
     #[arg(
         long,
-        default_value = crate::cli::DEFAULT_SHADING,
+        default_value_t = ShadingModel::DEFAULT,
         value_parser = parse_model,
         help = shading_help("Shading model of the character")
     )]

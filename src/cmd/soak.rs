@@ -72,7 +72,7 @@ pub struct SoakArgs {
     pub seconds: f64,
     #[arg(
         long,
-        default_value = "oss",
+        default_value_t = ShadingModel::DEFAULT,
         value_parser = parse_model,
         help = shading_help(
             "The player's chosen shading model: tier 0 (see `governor::Tiers::for_choice`)"

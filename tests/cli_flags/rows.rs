@@ -169,6 +169,7 @@ pub const ROWS: &[Row] = &[
     row("bench frame", "rounds", Kind::Count),
     row("bench frame", "frames", Kind::Count),
     row("bench frame", "out", Kind::OutFile { ext: Some("json") }),
+    row("bench frame", "first-frame-only", Kind::Switch),
     row("bench frame", "json", Kind::Switch),
     row("bench shading", "out", Kind::OutDir),
     row("bench shading", "rounds", Kind::Count),

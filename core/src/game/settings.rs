@@ -8,8 +8,8 @@ use crate::shading::ShadingModel;
 
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Settings {
-    /// A [`ShadingModel`] registry name.
-    pub shading: String,
+    /// The chosen model (its registry name only in the file).
+    pub shading: ShadingModel,
     pub best: u32,
     /// Play with the close-up camera (the runner large, its skin in view) rather than the
     /// wide follow camera.
@@ -19,7 +19,7 @@ pub struct Settings {
 impl Default for Settings {
     fn default() -> Self {
         Self {
-            shading: ShadingModel::ALL[0].name().to_string(),
+            shading: ShadingModel::DEFAULT,
             best: 0,
             close_camera: false,
         }
@@ -27,20 +27,19 @@ impl Default for Settings {
 }
 
 impl Settings {
-    /// The chosen model (the default if the stored name is unknown).
+    /// The chosen model ([`ShadingModel::DEFAULT`] until one is chosen or read).
     pub fn shading_model(&self) -> ShadingModel {
-        ShadingModel::from_name(&self.shading).unwrap_or(ShadingModel::ALL[0])
+        self.shading
     }
 
     pub fn set_shading_model(&mut self, model: ShadingModel) {
-        self.shading.clear();
-        self.shading.push_str(model.name());
+        self.shading = model;
     }
 
     pub fn to_text(&self) -> String {
         format!(
             "# dermis settings\nshading={}\nbest={}\ncamera={}\n",
-            self.shading,
+            self.shading.name(),
             self.best,
             if self.close_camera { "close" } else { "follow" }
         )
@@ -142,8 +141,8 @@ mod tests {
             "# c\n\nshading=bogus\nbest=-5\nbest=7\njunk\nextra=1\nshading=oss\ncamera=close\ncamera=up",
         );
         assert_eq!(
-            (s.best, s.shading.as_str(), s.close_camera),
-            (7, "oss", true)
+            (s.best, s.shading, s.close_camera),
+            (7, ShadingModel::Oss, true)
         );
         assert_eq!(dropped.len(), 5, "{dropped:?}");
         assert!(

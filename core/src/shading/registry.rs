@@ -301,6 +301,11 @@ pub static TABLE: [Descriptor; 9] = [
 ];
 
 impl ShadingModel {
+    /// The one default, wherever no model is chosen (the game's first run and an unreadable
+    /// saved choice, `render`, `demo`, `soak`, the benches, the phone): the mobile tier, the
+    /// most accurate model without a screen-space pass (one LUT fetch per pixel).
+    pub const DEFAULT: ShadingModel = ShadingModel::Preintegrated;
+
     /// Every model, in menu order.
     pub const ALL: [ShadingModel; 9] = [
         ShadingModel::Ward,
