@@ -46,6 +46,11 @@ pub fn stage_assets(src: &Path, dest: &Path) -> Result<usize, String> {
             if name.starts_with('.') || name.ends_with(".md") || name.ends_with(".lut") {
                 continue;
             }
+            // The scanned head (`assets/head/`, 0.7 MB of JPEG + glb) is desktop-only: the APK
+            // has no JPEG decoder and its budget is 6 MB.
+            if p.is_dir() && p.parent() == Some(src) && name == "head" {
+                continue;
+            }
             if p.is_dir() {
                 stack.push(p);
             } else if p.is_file() {
