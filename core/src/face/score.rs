@@ -136,9 +136,10 @@ impl Reference {
                     n += 1;
                 }
                 for c in 0..3 {
-                    let se = (sum[c] / n.max(1) as f64).sqrt() as f32 * mean.pixels[i][c];
+                    let m = mean.pixels[i][c];
+                    let se = (sum[c] / n.max(1) as f64).sqrt() as f32 * m.abs();
                     noise[i][c] = se;
-                    mask[i][c] = covered(i) && mean.pixels[i][c] > MIN_SNR * se;
+                    mask[i][c] = covered(i) && m > 0.0 && m > MIN_SNR * se;
                 }
             }
         }
