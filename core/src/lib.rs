@@ -8,6 +8,7 @@
 pub mod anim;
 pub mod asset;
 pub mod camera;
+pub mod face;
 pub mod game;
 pub mod governor;
 pub mod heap;

@@ -15,6 +15,7 @@
 
 pub mod bake;
 pub mod conformance;
+pub mod face;
 pub mod ground_truth;
 pub mod lut;
 pub mod mc;

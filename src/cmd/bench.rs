@@ -49,6 +49,8 @@ pub enum BenchKind {
     Shading(crate::cmd::bench_shading::ShadingArgs),
     /// GPU and CPU time saved by effect scheduling (tier by coverage and light), on/off ratios.
     Effects(crate::cmd::bench_effects::EffectsArgs),
+    /// Every model on the scanned head against the cached Mitsuba 3 references.
+    Face(crate::cmd::bench_face::FaceArgs),
 }
 
 pub fn run(args: BenchArgs) -> Result<(), String> {
@@ -62,6 +64,7 @@ pub fn run(args: BenchArgs) -> Result<(), String> {
         } => frame(rounds, frames, out, json, first_frame_only),
         BenchKind::Shading(args) => crate::cmd::bench_shading::run(args),
         BenchKind::Effects(args) => crate::cmd::bench_effects::run(args),
+        BenchKind::Face(args) => crate::cmd::bench_face::run(args),
     }
 }
 

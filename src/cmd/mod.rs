@@ -1,6 +1,7 @@
 pub mod args;
 pub mod bench;
 pub mod bench_effects;
+pub mod bench_face;
 pub mod bench_shading;
 pub mod chart;
 pub mod gputime;
@@ -12,6 +13,7 @@ pub mod profile;
 pub mod progress;
 pub mod reference;
 pub mod render;
+pub mod render_head;
 pub mod shaders;
 pub mod soak;
 pub mod sss;

@@ -2,6 +2,7 @@
 
 use std::path::PathBuf;
 
+use dermis_core::face::pfm::FloatImage;
 use dermis_core::render::Gpu;
 use dermis_core::scene::SceneAssets;
 use dermis_core::shading::{Material, ShadingModel};
@@ -46,12 +47,38 @@ pub struct RenderArgs {
     #[arg(long)]
     pub no_props: bool,
     /// Output PNG (checked before rendering: writable, `.png`).
+    #[arg(long, required_unless_present_any = ["hdr", "export"])]
+    pub out: Option<PathBuf>,
+    /// What to draw: `character` (the game's, with props) or `head` (the scanned head,
+    /// CC BY 3.0, in metres under the face scenes' camera; see `--face-light`).
+    #[arg(long, default_value = "character", value_parser = ["character", "head"])]
+    pub scene: String,
+    /// Also (or only) write linear radiance, no exposure or tone mapping, as a `.pfm`
+    /// (W m⁻² sr⁻¹ for a light of the given W/sr; the head: white light, no ambient).
     #[arg(long)]
-    pub out: PathBuf,
+    pub hdr: Option<PathBuf>,
+    /// `--scene head`: the light of the face scenes (front | side | back) unless `--light`.
+    #[arg(long, default_value = "front", value_parser = dermis_core::face::head::FaceLight::parse)]
+    pub face_light: dermis_core::face::head::FaceLight,
+    /// `--scene head`: leave the albedo map off (white: the path-traced reference's medium).
+    #[arg(long)]
+    pub plain: bool,
+    /// `--scene head`: write the scene for the path tracer (head.ply in metres, scene.json)
+    /// into this directory instead of rendering (`tools/mitsuba/render.py` reads it).
+    #[arg(long)]
+    pub export: Option<PathBuf>,
 }
 
 pub fn run(args: RenderArgs) -> Result<(), String> {
-    check_out_file(&args.out, Some("png"))?;
+    if let Some(out) = &args.out {
+        check_out_file(out, Some("png"))?;
+    }
+    if let Some(hdr) = &args.hdr {
+        check_out_file(hdr, Some("pfm"))?;
+    }
+    if args.scene == "head" || args.export.is_some() {
+        return super::render_head::run(&args);
+    }
     let assets = SceneAssets::load(&crate::paths::assets_dir(), args.model.as_deref())
         .map_err(|e| e.to_string())?;
     let clips = assets.character.animations.len();
@@ -75,15 +102,21 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
         props: !args.no_props,
         ..Shot::new(args.shading, args.material)
     };
-    progress.begin("rendering (material tables baked on first use)");
-    let image = still.render(&gpu, &assets, &shot)?;
-    progress.step("rendered");
-    image.save_png(&args.out)?;
+    progress.begin("rendering");
+    if let Some(out) = &args.out {
+        still.render(&gpu, &assets, &shot)?.save_png(out)?;
+    }
+    if let Some(hdr) = &args.hdr {
+        let mut raw =
+            StillRenderer::with_format(&gpu, &assets, w, h, wgpu::TextureFormat::Rgba16Float)?;
+        let pixels = raw.render_radiance(&gpu, &assets, &shot)?;
+        FloatImage::new(w, h, pixels.iter().map(|p| [p[0], p[1], p[2]]).collect())?.save(hdr)?;
+    }
     progress.step("saved");
     progress.finish();
     println!(
         "{}: {} {} {}x{} on {}",
-        args.out.display(),
+        super::render_head::outputs(&args),
         args.shading,
         args.material.name,
         w,

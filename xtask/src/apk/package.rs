@@ -47,6 +47,11 @@ pub fn stage_assets(src: &Path, dest: &Path) -> Result<usize, String> {
             if name.starts_with('.') || name.ends_with(".md") || baked {
                 continue;
             }
+            // The scanned head (`assets/head/`, 0.7 MB of JPEG + glb) is desktop-only: the APK
+            // has no JPEG decoder and its budget is 6 MB.
+            if p.is_dir() && p.parent() == Some(src) && name == "head" {
+                continue;
+            }
             if p.is_dir() {
                 stack.push(p);
             } else if p.is_file() {

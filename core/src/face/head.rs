@@ -1,0 +1,288 @@
+//! The scanned head in the engine: loaded into metres (a real head's size), drawn through the
+//! character pipeline with one joint, under the face scenes' camera and lights.
+//!
+//! The file is Lee Perry-Smith's head scan (`assets/head/`, CC BY 3.0): a bust in model units,
+//! +y up, the face toward +z, 8.55 units across the shoulders and 3.8 across the ears. At
+//! [`METRES_PER_UNIT`] the head is 15.2 cm across the ears and ~21 cm from chin to crown.
+
+use std::path::Path;
+
+use glam::{Mat4, Vec3};
+
+use crate::anim::Pose;
+use crate::asset::{load_gltf, Aabb, AssetError, Model, Node, Skin, TextureImage, Transform};
+use crate::render::{DrawSet, FrameView, Gpu, Light, Offscreen, Renderer, RgbaImage};
+use crate::shading::{Material, ShadingModel};
+
+/// The head's folder under the assets root.
+pub const DIR: &str = "head";
+/// The mesh (Blender's glTF export, no textures bound).
+pub const MESH_FILE: &str = "LeePerrySmith.glb";
+/// The albedo (sRGB JPEG, 1024²) on TEXCOORD_0.
+pub const ALBEDO_FILE: &str = "Map-COL.jpg";
+/// Metres per model unit: 3.8 units across the ears → 15.2 cm.
+pub const METRES_PER_UNIT: f32 = 0.04;
+/// The credit the licence asks for wherever the head is shown or shipped.
+pub const ATTRIBUTION: &str = "Head: \"Infinite, 3D Head Scan\" by Lee Perry-Smith / \
+Infinite-Realities (ir-ltd.net), based on a work at triplegangers.com, CC BY 3.0";
+
+/// Loads the head in metres as a one-joint skinned model; with `textured`, its albedo map is
+/// the base colour (all skin), else the base colour is white (the homogeneous medium the path
+/// tracer renders).
+pub fn load(assets_dir: &Path, textured: bool) -> Result<Model, AssetError> {
+    let dir = assets_dir.join(DIR);
+    let file = load_gltf(&dir.join(MESH_FILE))?;
+    let source = file.source.clone();
+    let mut primitive = file
+        .meshes
+        .first()
+        .and_then(|m| m.primitives.first())
+        .cloned()
+        .ok_or_else(|| AssetError::new(&source, "no mesh".to_string()))?;
+    let mut lo = Vec3::splat(f32::INFINITY);
+    let mut hi = Vec3::splat(f32::NEG_INFINITY);
+    for v in &mut primitive.vertices {
+        let p = Vec3::from_array(v.position) * METRES_PER_UNIT;
+        v.position = p.to_array();
+        v.joints = [0; 4];
+        v.weights = [1.0, 0.0, 0.0, 0.0];
+        lo = lo.min(p);
+        hi = hi.max(p);
+    }
+    primitive.bounds = Aabb { min: lo, max: hi };
+    primitive.material = Some(0);
+    let mut textures = Vec::new();
+    if textured {
+        let path = dir.join(ALBEDO_FILE);
+        let bytes = std::fs::read(&path)
+            .map_err(|e| AssetError::new(path.display().to_string(), e.to_string()))?;
+        let rgba = image::load_from_memory(&bytes)
+            .map_err(|e| AssetError::new(path.display().to_string(), e.to_string()))?
+            .into_rgba8();
+        textures.push(TextureImage {
+            width: rgba.width(),
+            height: rgba.height(),
+            rgba8: rgba.into_raw(),
+            srgb: true,
+        });
+    }
+    let node = |mesh, skin| Node {
+        name: None,
+        parent: None,
+        children: Vec::new(),
+        local: Transform::default(),
+        mesh,
+        skin,
+    };
+    Ok(Model {
+        source,
+        nodes: vec![node(None, None), node(Some(0), Some(0))],
+        roots: vec![0, 1],
+        meshes: vec![crate::asset::Mesh {
+            name: Some("head".into()),
+            primitives: vec![primitive],
+        }],
+        skins: vec![Skin {
+            name: None,
+            joints: vec![0],
+            inverse_bind: vec![Mat4::IDENTITY],
+        }],
+        materials: vec![crate::asset::Material {
+            name: Some("skin".into()),
+            base_color_factor: [1.0; 4],
+            base_color_texture: textured.then_some(0),
+        }],
+        textures,
+        animations: Vec::new(),
+    })
+}
+
+/// The face scenes' camera: a three-quarter view from the front-right, so the right ear is
+/// seen beside the face (metres, the head's own frame).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Camera {
+    pub eye: Vec3,
+    pub target: Vec3,
+    /// Vertical field of view (degrees).
+    pub fov_y_deg: f32,
+}
+
+/// The middle of the head (between the ears, at the eyes' height).
+pub const HEAD_CENTRE: Vec3 = Vec3::new(0.0, 0.048, 0.012);
+
+pub fn camera() -> Camera {
+    let dir = Vec3::new(0.45, 0.08, 0.89).normalize();
+    Camera {
+        eye: HEAD_CENTRE + dir * 0.75,
+        target: HEAD_CENTRE,
+        fov_y_deg: 24.0,
+    }
+}
+
+/// Radiant intensity of the face scenes' point light [W/sr].
+pub const LIGHT_INTENSITY: f32 = 1.0;
+/// Distance of the face scenes' light from the head's centre [m].
+pub const LIGHT_DISTANCE_M: f32 = 0.8;
+
+/// The three lights of the face scenes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FaceLight {
+    /// From the front, above and left of the camera.
+    Front,
+    /// From the right, level with the nose: the terminator runs along it.
+    Side,
+    /// From behind the head, right and a little above: through the right ear.
+    Back,
+}
+
+impl FaceLight {
+    pub const ALL: [FaceLight; 3] = [FaceLight::Front, FaceLight::Side, FaceLight::Back];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            FaceLight::Front => "front",
+            FaceLight::Side => "side",
+            FaceLight::Back => "back",
+        }
+    }
+
+    /// Looks a light up by name.
+    pub fn parse(s: &str) -> Result<Self, String> {
+        Self::ALL
+            .into_iter()
+            .find(|l| l.name() == s)
+            .ok_or_else(|| format!("unknown face light `{s}` (known: front, side, back)"))
+    }
+
+    /// The light's position [m].
+    pub fn position(self) -> Vec3 {
+        let dir = match self {
+            FaceLight::Front => Vec3::new(-0.2, 0.3, 1.0),
+            FaceLight::Side => Vec3::new(1.0, 0.05, 0.1),
+            FaceLight::Back => Vec3::new(0.35, 0.15, -1.0),
+        };
+        HEAD_CENTRE + dir.normalize() * LIGHT_DISTANCE_M
+    }
+}
+
+/// Draws a loaded head through the character pipeline into its own target.
+pub struct HeadRenderer {
+    renderer: Renderer,
+    target: Offscreen,
+    hdr: bool,
+}
+
+impl HeadRenderer {
+    /// A renderer for `model` (from [`load`]) at `width`×`height`; `hdr`: an `Rgba16Float`
+    /// target holding linear radiance (no exposure, no tone mapping), else an sRGB image.
+    pub fn new(
+        gpu: &Gpu,
+        model: &Model,
+        material: &Material,
+        width: u32,
+        height: u32,
+        hdr: bool,
+    ) -> Result<Self, String> {
+        let format = if hdr {
+            wgpu::TextureFormat::Rgba16Float
+        } else {
+            crate::render::OFFSCREEN_FORMAT
+        };
+        let mut renderer = Renderer::new(gpu, format);
+        if hdr {
+            renderer.clear = wgpu::Color::BLACK;
+        }
+        renderer.load_character(gpu, model, material)?;
+        let mut pose = Pose::new(model);
+        pose.update_world(model);
+        renderer.update_character(&gpu.queue, model, &pose, Mat4::IDENTITY);
+        Ok(Self {
+            renderer,
+            target: Offscreen::with_format(gpu, width, height, format),
+            hdr,
+        })
+    }
+
+    /// Switches the material (the model keeps its geometry).
+    pub fn set_material(&self, gpu: &Gpu, material: &Material) {
+        self.renderer.set_material(&gpu.queue, material);
+    }
+
+    fn draw(&mut self, gpu: &Gpu, shading: Option<ShadingModel>, camera: &Camera, light: Light) {
+        let (w, h) = (self.target.targets.width, self.target.targets.height);
+        let aspect = w as f32 / h as f32;
+        let view = FrameView {
+            view_proj: crate::camera::look_at(
+                camera.eye,
+                camera.target,
+                camera.fov_y_deg.to_radians(),
+                aspect,
+            ),
+            camera_pos: camera.eye,
+            light,
+            exposure: crate::render::EXPOSURE,
+        };
+        self.renderer.prepare(&gpu.queue, &view);
+        let mut encoder = gpu
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+        let draw = DrawSet {
+            shading,
+            character: true,
+            props: false,
+        };
+        self.renderer.encode(
+            &mut encoder,
+            &self.target.targets,
+            &self.target.view,
+            draw,
+            None,
+            None,
+        );
+        self.target.copy_out(&mut encoder);
+        gpu.queue.submit([encoder.finish()]);
+    }
+
+    /// Linear radiance [W m⁻² sr⁻¹] per pixel (rows top to bottom) under a white point light
+    /// of `intensity` W/sr at `position`, no ambient. Needs an `hdr` renderer.
+    pub fn radiance(
+        &mut self,
+        gpu: &Gpu,
+        shading: ShadingModel,
+        camera: &Camera,
+        position: Vec3,
+        intensity: f32,
+    ) -> Result<Vec<[f32; 3]>, String> {
+        if !self.hdr {
+            return Err("radiance needs an HDR head renderer".into());
+        }
+        let light = Light {
+            position,
+            intensity,
+            color: Vec3::ONE,
+            ambient: Vec3::ZERO,
+        };
+        self.draw(gpu, Some(shading), camera, light);
+        Ok(self
+            .target
+            .read_f16(gpu)
+            .into_iter()
+            .map(|p| [p[0], p[1], p[2]])
+            .collect())
+    }
+
+    /// The tone-mapped image under `light` (the game's exposure and ambient).
+    pub fn image(
+        &mut self,
+        gpu: &Gpu,
+        shading: ShadingModel,
+        camera: &Camera,
+        light: Light,
+    ) -> Result<RgbaImage, String> {
+        if self.hdr {
+            return Err("image needs an sRGB head renderer".into());
+        }
+        self.draw(gpu, Some(shading), camera, light);
+        Ok(self.target.read(gpu))
+    }
+}

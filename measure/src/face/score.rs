@@ -1,0 +1,303 @@
+//! The image-space score of a rendered face against the path-traced reference.
+//!
+//! The reference is two renders with independent seeds. Both it and the model are averaged
+//! over blocks of [`BLOCK`]² pixels (a path-traced pixel is far noisier than the block), and
+//! only blocks the head covers entirely are scored (the reference's alpha: silhouettes, where
+//! a box filter and MSAA differ, are left out). The two seeds' mean is the reference; half
+//! their difference estimates its standard error, as a relative error averaged (RMS) over the
+//! 3×3 neighbouring blocks so that one block's chance agreement does not make it noiseless. A
+//! block's channel counts where the reference stands [`MIN_SNR`] standard errors above zero.
+//! The score is the mean over those of |ln(model/reference)|, each capped at [`CAP`] (a black
+//! image scores the cap, a doubled one ln 2).
+
+use dermis_core::face::pfm::FloatImage;
+
+/// Pixels per side of a scored block.
+pub const BLOCK: u32 = 4;
+/// Reference / standard error above which a block's channel is scored.
+pub const MIN_SNR: f32 = 5.0;
+/// The most one block's channel can add (a zero or negative model value).
+pub const CAP: f64 = 10.0;
+
+/// A cached reference ready for scoring.
+#[derive(Clone, Debug)]
+pub struct Reference {
+    /// The seeds' mean at full resolution.
+    pub full: FloatImage,
+    /// Block means of the seeds' mean.
+    pub mean: FloatImage,
+    /// Standard error of `mean` per block and channel.
+    pub noise: Vec<[f32; 3]>,
+    /// Scored block channels.
+    pub mask: Vec<[bool; 3]>,
+    block: u32,
+}
+
+/// One model's score on one scene.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Score {
+    /// Mean |ln(model/reference)| over the scored block channels.
+    pub mean_abs_ln: f64,
+    /// |ln(Σ model / Σ reference)| over the same block channels.
+    pub integrated: f64,
+    /// Scored block channels.
+    pub count: usize,
+}
+
+/// Means over `block`² pixels (a partial last row or column of blocks is dropped).
+pub fn block_means(img: &FloatImage, block: u32) -> FloatImage {
+    let (bw, bh) = (img.width / block, img.height / block);
+    let mut out = vec![[0f32; 3]; (bw * bh) as usize];
+    for by in 0..bh {
+        for bx in 0..bw {
+            let mut sum = [0f64; 3];
+            for y in by * block..(by + 1) * block {
+                for x in bx * block..(bx + 1) * block {
+                    let p = img.pixels[(y * img.width + x) as usize];
+                    for c in 0..3 {
+                        sum[c] += p[c] as f64;
+                    }
+                }
+            }
+            let n = (block * block) as f64;
+            out[(by * bw + bx) as usize] = sum.map(|s| (s / n) as f32);
+        }
+    }
+    FloatImage {
+        width: bw,
+        height: bh,
+        pixels: out,
+    }
+}
+
+impl Reference {
+    /// From two independent renders and the head's coverage (alpha, 0..1), in blocks of
+    /// `block`² pixels.
+    pub fn from_seeds(
+        a: &FloatImage,
+        b: &FloatImage,
+        alpha: &[f32],
+        block: u32,
+    ) -> Result<Self, String> {
+        let (w, h) = (a.width, a.height);
+        if (b.width, b.height) != (w, h) || alpha.len() != (w * h) as usize {
+            return Err("reference seeds and coverage differ in size".into());
+        }
+        if block == 0 || w < block || h < block {
+            return Err(format!("block {block} does not fit a {w}x{h} image"));
+        }
+        let full = FloatImage::new(
+            w,
+            h,
+            a.pixels
+                .iter()
+                .zip(&b.pixels)
+                .map(|(p, q)| std::array::from_fn(|c| 0.5 * (p[c] + q[c])))
+                .collect(),
+        )?;
+        let cov = FloatImage::new(w, h, alpha.iter().map(|&v| [v; 3]).collect())?;
+        let (ba, bb, bc) = (
+            block_means(a, block),
+            block_means(b, block),
+            block_means(&cov, block),
+        );
+        let mean = block_means(&full, block);
+        let (bw, bh) = (mean.width as i64, mean.height as i64);
+        let covered = |i: usize| bc.pixels[i][0] >= 0.999;
+        // Relative half-difference per block channel (0 where the mean is not positive).
+        let rel: Vec<[f64; 3]> = (0..mean.pixels.len())
+            .map(|i| {
+                std::array::from_fn(|c| {
+                    let (x, y) = (ba.pixels[i][c] as f64, bb.pixels[i][c] as f64);
+                    if x + y > 0.0 {
+                        (x - y) / (x + y)
+                    } else {
+                        0.0
+                    }
+                })
+            })
+            .collect();
+        let mut noise = vec![[0f32; 3]; mean.pixels.len()];
+        let mut mask = vec![[false; 3]; mean.pixels.len()];
+        for y in 0..bh {
+            for x in 0..bw {
+                let i = (y * bw + x) as usize;
+                let mut sum = [0f64; 3];
+                let mut n = 0usize;
+                for (dx, dy) in (-1..=1).flat_map(|dy| (-1..=1).map(move |dx| (dx, dy))) {
+                    let (u, v) = (x + dx, y + dy);
+                    if u < 0 || v < 0 || u >= bw || v >= bh || !covered((v * bw + u) as usize) {
+                        continue;
+                    }
+                    let j = (v * bw + u) as usize;
+                    for c in 0..3 {
+                        sum[c] += rel[j][c] * rel[j][c];
+                    }
+                    n += 1;
+                }
+                for c in 0..3 {
+                    let m = mean.pixels[i][c];
+                    let se = (sum[c] / n.max(1) as f64).sqrt() as f32 * m.abs();
+                    noise[i][c] = se;
+                    mask[i][c] = covered(i) && m > 0.0 && m > MIN_SNR * se;
+                }
+            }
+        }
+        Ok(Self {
+            full,
+            mean,
+            noise,
+            mask,
+            block,
+        })
+    }
+
+    /// Mean relative standard error over the scored block channels.
+    pub fn relative_noise(&self) -> f64 {
+        let (mut sum, mut n) = (0.0, 0usize);
+        for ((m, s), k) in self.mean.pixels.iter().zip(&self.noise).zip(&self.mask) {
+            for c in 0..3 {
+                if k[c] {
+                    sum += (s[c] / m[c]) as f64;
+                    n += 1;
+                }
+            }
+        }
+        sum / n.max(1) as f64
+    }
+
+    /// Scores `model` (linear radiance, the reference's size and units).
+    pub fn score(&self, model: &FloatImage) -> Result<Score, String> {
+        if (model.width, model.height) != (self.full.width, self.full.height) {
+            return Err(format!(
+                "model image {}x{} is not the reference's {}x{}",
+                model.width, model.height, self.full.width, self.full.height
+            ));
+        }
+        let blocks = block_means(model, self.block);
+        let (mut sum, mut n) = (0.0f64, 0usize);
+        let (mut total_m, mut total_r) = (0.0f64, 0.0f64);
+        for ((p, r), k) in blocks.pixels.iter().zip(&self.mean.pixels).zip(&self.mask) {
+            for c in 0..3 {
+                if !k[c] {
+                    continue;
+                }
+                let (m, r) = (p[c] as f64, r[c] as f64);
+                let e = if m > 0.0 && m.is_finite() {
+                    (m / r).ln().abs().min(CAP)
+                } else {
+                    CAP
+                };
+                sum += e;
+                n += 1;
+                total_m += if m.is_finite() { m.max(0.0) } else { 0.0 };
+                total_r += r;
+            }
+        }
+        if n == 0 {
+            return Err("the reference has no block above its noise".into());
+        }
+        let integrated = if total_m > 0.0 {
+            (total_m / total_r).ln().abs().min(CAP)
+        } else {
+            CAP
+        };
+        Ok(Score {
+            mean_abs_ln: sum / n as f64,
+            integrated,
+            count: n,
+        })
+    }
+}
+
+/// The tone mapping the pair is compared with perceptually: exposure, Narkowicz's ACES fit
+/// (the game's `tonemap`), sRGB encode; 8-bit RGB, rows top to bottom.
+pub fn tone_map(image: &FloatImage, exposure: f32) -> Vec<u8> {
+    let aces = |x: f32| {
+        let c = (x * exposure).max(0.0);
+        ((c * (2.51 * c + 0.03)) / (c * (2.43 * c + 0.59) + 0.14)).clamp(0.0, 1.0)
+    };
+    let srgb = |c: f32| {
+        if c <= 0.0031308 {
+            c * 12.92
+        } else {
+            1.055 * c.powf(1.0 / 2.4) - 0.055
+        }
+    };
+    image
+        .pixels
+        .iter()
+        .flat_map(|p| p.map(|c| (srgb(aces(c)) * 255.0 + 0.5) as u8))
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A smooth, noisy-ish reference: a gradient with a small ±2 % seed difference.
+    fn reference() -> (Reference, FloatImage) {
+        let (w, h) = (16u32, 12u32);
+        let px = |s: f32| {
+            (0..w * h)
+                .map(|i| {
+                    let v = 0.1 + (i % w) as f32 * 0.01;
+                    let e = if (i / w + i % w) % 2 == 0 { s } else { -s };
+                    [v * (1.0 + e), 0.5 * v * (1.0 + e), 0.2 * v * (1.0 + e)]
+                })
+                .collect()
+        };
+        let a = FloatImage::new(w, h, px(0.02)).unwrap();
+        let b = FloatImage::new(w, h, px(-0.02)).unwrap();
+        let alpha = vec![1.0; (w * h) as usize];
+        let r = Reference::from_seeds(&a, &b, &alpha, 1).unwrap();
+        let mean = r.full.clone();
+        (r, mean)
+    }
+
+    #[test]
+    fn black_scores_the_cap_doubled_scores_ln2_itself_zero() {
+        let (r, mean) = reference();
+        assert!(
+            (r.relative_noise() - 0.02).abs() < 2e-3,
+            "{}",
+            r.relative_noise()
+        );
+        let own = r.score(&mean).unwrap();
+        assert!(own.mean_abs_ln < 1e-9 && own.count > 0);
+        let doubled = FloatImage {
+            pixels: mean.pixels.iter().map(|p| p.map(|c| 2.0 * c)).collect(),
+            ..mean.clone()
+        };
+        let s = r.score(&doubled).unwrap();
+        assert!((s.mean_abs_ln - 2f64.ln()).abs() < 1e-6, "{s:?}");
+        assert!((s.integrated - 2f64.ln()).abs() < 1e-6);
+        let black = FloatImage {
+            pixels: vec![[0.0; 3]; mean.pixels.len()],
+            ..mean.clone()
+        };
+        let s = r.score(&black).unwrap();
+        assert_eq!((s.mean_abs_ln, s.integrated), (CAP, CAP));
+    }
+
+    #[test]
+    fn partly_covered_blocks_and_noise_are_left_out() {
+        let (w, h) = (8u32, 8u32);
+        let a = FloatImage::new(w, h, vec![[1.0, 1.0, 0.01]; 64]).unwrap();
+        let b = FloatImage::new(w, h, vec![[1.0, 1.0, -0.01]; 64]).unwrap();
+        // Covered on the left 3 columns: 2×2 blocks, only the first block column is whole.
+        let alpha: Vec<f32> = (0..64).map(|i| if i % 8 < 3 { 1.0 } else { 0.0 }).collect();
+        let r = Reference::from_seeds(&a, &b, &alpha, 2).unwrap();
+        assert_eq!((r.mean.width, r.mean.height), (4, 4));
+        for (i, k) in r.mask.iter().enumerate() {
+            // Blue: mean 0 with noise 0.01, never scored; red: the whole blocks only.
+            assert!(!k[2]);
+            assert_eq!(k[0], i % 4 == 0, "{i}");
+        }
+        // A model scored against it: black is the cap, the reference itself 0.
+        let black = FloatImage::new(w, h, vec![[0.0; 3]; 64]).unwrap();
+        assert_eq!(r.score(&black).unwrap().mean_abs_ln, CAP);
+        assert_eq!(r.score(&r.full).unwrap().mean_abs_ln, 0.0);
+        assert!(r.score(&r.mean).is_err());
+    }
+}

@@ -1,0 +1,180 @@
+//! The scanned head and its path-traced references (`tools/mitsuba/face/`): the exported
+//! scene is the engine's (mesh in metres, the material's coefficients), the cached references
+//! were rendered from exactly those files, `render --hdr` is linear radiance, and the face
+//! score of a black or doubled image is what it must be.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use dermis_core::face::head::{self, FaceLight, HeadRenderer};
+use dermis_core::face::pfm::FloatImage;
+use dermis_core::render::Gpu;
+use dermis_core::shading::{material::SKIN1, ShadingModel};
+use dermis_measure::face::cache::Cache;
+use dermis_measure::face::export::{SceneJson, WeldedMesh};
+use dermis_measure::face::score::CAP;
+
+fn root() -> &'static Path {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn cache_dir() -> PathBuf {
+    root().join("tools/mitsuba/face")
+}
+
+fn assets() -> PathBuf {
+    root().join("assets")
+}
+
+fn tmp(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("dermis-face-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+#[test]
+fn exported_scene_is_the_engines_head_in_metres_with_the_materials_coefficients() {
+    let model = head::load(&assets(), false).unwrap();
+    let dir = tmp("export");
+    dermis_measure::face::export::write(&dir, &model, &SKIN1).unwrap();
+    // The mesh: closed, outward, and a real head's size in metres.
+    let mesh = WeldedMesh::from_ply(&std::fs::read(dir.join("head.ply")).unwrap()).unwrap();
+    assert_eq!(mesh, WeldedMesh::from_model(&model).unwrap());
+    assert_eq!(mesh.open_and_nonmanifold_edges(), (0, 0));
+    assert!(mesh.volume() > 0.0);
+    let ears = mesh
+        .positions
+        .iter()
+        .filter(|p| (0.03..0.06).contains(&p.y))
+        .map(|p| p.x.abs())
+        .fold(0f32, f32::max);
+    assert!((0.07..0.085).contains(&ears), "ear half-width {ears} m");
+    // The material: skin1's σ_a, σ_s = σ'_s/(1 − g), g, η.
+    let scene: SceneJson =
+        serde_json::from_slice(&std::fs::read(dir.join("scene.json")).unwrap()).unwrap();
+    assert_eq!(scene.medium.sigma_a_per_mm, SKIN1.sigma_a);
+    assert_eq!(scene.medium.sigma_s_per_mm, SKIN1.sigma_s_prime);
+    assert_eq!((scene.medium.g, scene.medium.eta), (SKIN1.g, SKIN1.eta));
+    assert_eq!(scene.lights.len(), 3);
+    assert_eq!(
+        scene.lights[1].position,
+        FaceLight::Side.position().to_array()
+    );
+    // The committed scene the references were rendered from is this export, byte for byte.
+    for name in ["head.ply", "scene.json"] {
+        assert!(
+            std::fs::read(dir.join(name)).unwrap()
+                == std::fs::read(cache_dir().join(name)).unwrap(),
+            "tools/mitsuba/face/{name} is not what the engine exports now: re-export and re-render"
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn cached_references_match_their_scene_files() {
+    let cache = Cache::load(&cache_dir()).unwrap();
+    assert_eq!(cache.references.len(), 3);
+    assert!(cache.record.mitsuba.starts_with("3.9"));
+    for (light, r) in &cache.references {
+        let scored = r.mask.iter().flatten().filter(|k| **k).count();
+        assert!(scored >= 50, "{}: {scored} block channels", light.name());
+        assert!(r.relative_noise() < 0.2, "{}", light.name());
+    }
+    // A scene file that is not the rendered one is refused.
+    let dir = tmp("stale");
+    for e in std::fs::read_dir(cache_dir()).unwrap() {
+        let p = e.unwrap().path();
+        std::fs::copy(&p, dir.join(p.file_name().unwrap())).unwrap();
+    }
+    let scene = std::fs::read_to_string(dir.join("scene.json")).unwrap();
+    std::fs::write(dir.join("scene.json"), scene.replace("1.3", "1.4")).unwrap();
+    let e = Cache::load(&dir).err().unwrap();
+    assert!(e.contains("scene.json") && e.contains("re-render"), "{e}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn face_score_of_black_doubled_and_the_reference_itself() {
+    let cache = Cache::load(&cache_dir()).unwrap();
+    for (_, r) in &cache.references {
+        let f = &r.full;
+        let scaled = |k: f32| FloatImage {
+            pixels: f.pixels.iter().map(|p| p.map(|c| c * k)).collect(),
+            ..f.clone()
+        };
+        let own = r.score(f).unwrap();
+        assert!(own.mean_abs_ln < 1e-6, "{own:?}");
+        let d = r.score(&scaled(2.0)).unwrap();
+        assert!((d.mean_abs_ln - 2f64.ln()).abs() < 1e-5, "{d:?}");
+        assert_eq!(r.score(&scaled(0.0)).unwrap().mean_abs_ln, CAP);
+    }
+}
+
+#[test]
+fn hdr_radiance_is_linear_in_the_light() {
+    let gpu = Gpu::headless().unwrap_or_else(|e| panic!("{e}"));
+    let model = head::load(&assets(), false).unwrap();
+    let mut r = HeadRenderer::new(&gpu, &model, &SKIN1, 96, 96, true).unwrap();
+    let cam = head::camera();
+    for shading in [ShadingModel::Ward, ShadingModel::Tabulated] {
+        let pos = FaceLight::Front.position();
+        let one = r.radiance(&gpu, shading, &cam, pos, 1.0).unwrap();
+        let two = r.radiance(&gpu, shading, &cam, pos, 2.0).unwrap();
+        let (mut lit, mut worst) = (0, 0f32);
+        for (a, b) in one.iter().zip(&two) {
+            for c in 0..3 {
+                if a[c] > 1e-3 {
+                    lit += 1;
+                    worst = worst.max((b[c] / a[c] - 2.0).abs());
+                } else {
+                    assert!(b[c] < 4e-3);
+                }
+            }
+        }
+        assert!(lit > 3000, "{shading}: {lit} lit pixel channels");
+        // f16 targets: 2⁻¹⁰ relative rounding on each.
+        assert!(worst < 4e-3, "{shading}: doubled light gives ×2 ± {worst}");
+    }
+}
+
+#[test]
+fn render_head_writes_hdr_and_png() {
+    let dir = tmp("cli");
+    let (png, pfm) = (dir.join("head.png"), dir.join("head.pfm"));
+    let out = Command::new(env!("CARGO_BIN_EXE_dermis"))
+        .args([
+            "render",
+            "--scene",
+            "head",
+            "--size",
+            "64x64",
+            "--shading",
+            "ward",
+        ])
+        .args(["--face-light", "side", "--out"])
+        .arg(&png)
+        .arg("--hdr")
+        .arg(&pfm)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(String::from_utf8_lossy(&out.stdout).contains("Lee Perry-Smith"));
+    let img = FloatImage::load(&pfm).unwrap();
+    assert_eq!((img.width, img.height), (64, 64));
+    // Black background in the corners, radiance on the head.
+    assert_eq!(img.pixels[0], [0.0; 3]);
+    assert!(img.pixels.iter().filter(|p| p[0] > 0.01).count() > 500);
+    assert!(png.is_file());
+    let bad = Command::new(env!("CARGO_BIN_EXE_dermis"))
+        .args(["render", "--scene", "head", "--hdr"])
+        .arg(dir.join("x.exr"))
+        .output()
+        .unwrap();
+    assert!(!bad.status.success());
+    let _ = std::fs::remove_dir_all(&dir);
+}
