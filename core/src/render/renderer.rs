@@ -65,6 +65,8 @@ pub struct Renderer {
     shadow_bound: Option<(Vec3, f32)>,
     /// Where the character was last placed.
     character_world: Mat4,
+    /// The loaded character's bounding sphere in its own space (centre, radius).
+    character_bound: (Vec3, f32),
     character: Option<CharacterGpu>,
     props: Vec<PropGpu>,
     /// Scratch for grouping prop instances by kind (reused, no per-frame allocation).
@@ -128,6 +130,7 @@ impl Renderer {
             shadow_drawn: std::cell::Cell::new(false),
             shadow_bound: None,
             character_world: Mat4::IDENTITY,
+            character_bound: CHARACTER.sphere_at(Vec3::ZERO),
             character: None,
             props: Vec::new(),
             scratch: Vec::with_capacity(MAX_INSTANCES as usize),
@@ -161,6 +164,7 @@ impl Renderer {
         )?;
         self.character = Some(character);
         self.casters.character = Some(CHARACTER);
+        self.character_bound = model_sphere(model).unwrap_or(CHARACTER.sphere_at(Vec3::ZERO));
         if self.shadow_map.is_none() {
             self.ensure_shadow_map(gpu, SHADOW_MAP_SIZE);
         }
@@ -339,17 +343,15 @@ impl Renderer {
             return ShadowView::NONE;
         };
         let (centre, radius) = self.shadow_bound.unwrap_or_else(|| {
-            let (c, r) = CHARACTER.sphere_at(Vec3::ZERO);
+            let (c, r) = self.character_bound;
             let w = self.character_world;
             let scale = w
                 .x_axis
                 .truncate()
                 .length()
-                .max(w.y_axis.truncate().length());
-            (
-                w.transform_point3(c),
-                r * scale.max(w.z_axis.truncate().length()),
-            )
+                .max(w.y_axis.truncate().length())
+                .max(w.z_axis.truncate().length());
+            (w.transform_point3(c), r * scale * POSE_MARGIN)
         });
         ShadowView::fit(light, centre, radius, map.size)
     }
@@ -605,6 +607,24 @@ impl Renderer {
         }
         stats
     }
+}
+
+/// How much a pose may reach beyond the bind pose's bounding sphere (arms, a jump's tuck).
+const POSE_MARGIN: f32 = 1.25;
+
+/// The bounding sphere of `model`'s meshes (their primitives' boxes), in its own space.
+fn model_sphere(model: &Model) -> Option<(Vec3, f32)> {
+    let mut boxes = model
+        .meshes
+        .iter()
+        .flat_map(|m| &m.primitives)
+        .map(|p| &p.bounds);
+    let first = boxes.next()?;
+    let (lo, hi) = boxes.fold((first.min, first.max), |(lo, hi), b| {
+        (lo.min(b.min), hi.max(b.max))
+    });
+    let r = 0.5 * (hi - lo).length();
+    (r.is_finite() && r > 0.0).then_some((0.5 * (lo + hi), r))
 }
 
 /// Group 0: the frame uniform, the shadow map with its comparison sampler, the penumbra map.
