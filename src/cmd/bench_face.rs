@@ -59,6 +59,34 @@ fn exposure(front: &Reference, alpha: &[f32]) -> f32 {
     (0.35 / (sum / n.max(1) as f64).max(1e-9)) as f32
 }
 
+/// Each model's mean |ln(model/reference)| on the head under the cached references' lights
+/// (front, side, back), for `bench shading`'s face column.
+pub fn face_scores(gpu: &Gpu) -> Result<Vec<(ShadingModel, Vec<(String, f64)>)>, String> {
+    let dir = default_cache();
+    let cache = Cache::load(&dir)?;
+    let model = head::load(&crate::paths::assets_dir(), false).map_err(|e| e.to_string())?;
+    let (w, h) = (cache.scene.camera.width, cache.scene.camera.height);
+    let mut renderer = HeadRenderer::new(gpu, &model, &SKIN1, w, h, true)?;
+    let camera = head::camera();
+    let mut out = Vec::new();
+    for shading in ShadingModel::ALL {
+        let mut per_light = Vec::new();
+        for (light, reference) in &cache.references {
+            let pixels = renderer.radiance(
+                gpu,
+                shading,
+                &camera,
+                light.position(),
+                head::LIGHT_INTENSITY,
+            )?;
+            let score = reference.score(&FloatImage::new(w, h, pixels)?)?;
+            per_light.push((light.name().to_string(), score.mean_abs_ln));
+        }
+        out.push((shading, per_light));
+    }
+    Ok(out)
+}
+
 pub fn run(args: FaceArgs) -> Result<(), String> {
     check_out_dir(&args.out)?;
     let dir = args.cache.unwrap_or_else(default_cache);

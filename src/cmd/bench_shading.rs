@@ -340,6 +340,22 @@ fn build_report(
         }
         rows.push(row);
     }
+    // The face column: every model on the scanned head against the cached Mitsuba 3
+    // references (`bench face` has the per-light detail and ꟻLIP).
+    match crate::cmd::bench_face::face_scores(gpu) {
+        Ok(faces) => {
+            for (model, per_light) in faces {
+                let mean = per_light.iter().map(|p| p.1).sum::<f64>() / per_light.len() as f64;
+                if let Some(row) = rows.iter_mut().find(|r| r["model"] == json!(model.name())) {
+                    let mut face: Map<String, Value> =
+                        per_light.into_iter().map(|(l, v)| (l, json!(v))).collect();
+                    face.insert("mean".into(), json!(mean));
+                    row["face"] = Value::Object(face);
+                }
+            }
+        }
+        Err(e) => eprintln!("bench shading: no face column: {e}"),
+    }
     let ward_g57 = rows[0]["mali"]["G57"]["per_pixel"].as_f64();
     for row in &mut rows {
         let r = row["mali"]["G57"]["per_pixel"]

@@ -177,7 +177,7 @@ pub fn markdown(report: &Value) -> String {
     let mut s = format!(
         "Adapter: {} — {}. Errors: mean |ln(model/MC)| over the bins above the Monte Carlo's noise floor, \
          per scene family, averaged over {} (η = 1.4, g = 0); overall = the four kinds (point, edge, sphere, slab) weighted equally; \
-         integrated = |ln(∫model/∫MC)|, same weighting. Cost: {}x{} target filled by a flat skin patch \
+         integrated = |ln(∫model/∫MC)|, same weighting; face = mean |ln(model/Mitsuba 3)| on the scanned head under front, side and back light (`dermis bench face`). Cost: {}x{} target filled by a flat skin patch \
          ({} mm wide, {:.2} mm/pixel, coverage {:.0} %), point light, both passes for screen-space models, {} rounds. \
          Mali: fragment cycles per pixel (`bound`, Mesa {}), the subsurface pass added for screen-space models; \
          loops weighted by their iteration counts ({} samples per sampled ring), Mesa's static figure in parentheses.\n\n",
@@ -192,8 +192,8 @@ pub fn markdown(report: &Value) -> String {
     );
     s += "| model | ";
     s += &fams.join(" | ");
-    s += " | overall | integrated | lavapipe ms | × ward (95 % CI) | × unlit | G52 cycles | G57 cycles | G57 × ward |\n|---|";
-    s += &"---|".repeat(fams.len() + 8);
+    s += " | overall | integrated | face | lavapipe ms | × ward (95 % CI) | × unlit | G52 cycles | G57 cycles | G57 × ward |\n|---|";
+    s += &"---|".repeat(fams.len() + 9);
     s += "\n";
     // The Monte Carlo's own noise, per family (the same for every model).
     if let Some(first) = models(report).find(|r| r["error"].is_object()) {
@@ -204,18 +204,19 @@ pub fn markdown(report: &Value) -> String {
             .map(|f| num(&e["mc_rel_se"][*f], 4))
             .collect::<Vec<_>>()
             .join(" | ");
-        s += &format!(" | {} | | | | | | | |\n", num(&e["mc_rel_se_overall"], 4));
+        s += &format!(" | {} | | | | | | | | |\n", num(&e["mc_rel_se_overall"], 4));
     }
     for r in models(report) {
         let e = &r["error"];
         let errs: Vec<String> = fams.iter().map(|f| num(&e["families"][*f], 3)).collect();
         let m = &r["mali"];
         s += &format!(
-            "| {} | {} | {} | {} | {} | {} ({}–{}) | {} | {} | {} | {} |\n",
+            "| {} | {} | {} | {} | {} | {} | {} ({}–{}) | {} | {} | {} | {} |\n",
             r["model"].as_str().unwrap_or("?"),
             errs.join(" | "),
             num(&e["overall"], 3),
             num(&e["integrated"], 3),
+            num(&r["face"]["mean"], 3),
             num(&r["lavapipe_ms_median"], 2),
             num(&r["ratio_to_ward"], 3),
             num(&r["ratio_to_ward_ci95"][0], 3),
