@@ -59,9 +59,12 @@ fn exposure(front: &Reference, alpha: &[f32]) -> f32 {
     (0.35 / (sum / n.max(1) as f64).max(1e-9)) as f32
 }
 
+/// One model's mean |ln(model/reference)| per light (name, error).
+pub type FaceScore = (ShadingModel, Vec<(String, f64)>);
+
 /// Each model's mean |ln(model/reference)| on the head under the cached references' lights
 /// (front, side, back), for `bench shading`'s face column.
-pub fn face_scores(gpu: &Gpu) -> Result<Vec<(ShadingModel, Vec<(String, f64)>)>, String> {
+pub fn face_scores(gpu: &Gpu) -> Result<Vec<FaceScore>, String> {
     let dir = default_cache();
     let cache = Cache::load(&dir)?;
     let model = head::load(&crate::paths::assets_dir(), false).map_err(|e| e.to_string())?;
