@@ -253,9 +253,10 @@ impl Penumbra {
         queue.write_buffer(&self.uniforms, 0, &data);
     }
 
-    /// Records the seed pass and this frame's jump passes; the last writes target 0 (the one
-    /// receivers bind), so the seed goes where the parity puts it.
-    pub fn encode(&self, encoder: &mut wgpu::CommandEncoder) {
+    /// Records the seed pass and this frame's jump passes (one full-screen draw each; returns
+    /// their number); the last writes target 0 (the one receivers bind), so the seed goes
+    /// where the parity puts it.
+    pub fn encode(&self, encoder: &mut wgpu::CommandEncoder) -> u32 {
         let jumps = self.jumps.get();
         let mut target = jumps % 2;
         for (k, p) in self.passes.iter().take(jumps + 1).enumerate() {
@@ -288,6 +289,7 @@ impl Penumbra {
             pass.set_bind_group(0, &p.groups[1 - target], &[]);
             pass.draw(0..3, 0..1);
         }
+        jumps as u32 + 1
     }
 }
 

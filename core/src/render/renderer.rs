@@ -414,11 +414,11 @@ impl Renderer {
         match &self.shadow_map {
             Some(map) if self.shadow_drawn.get() => {
                 let character = self.character.as_ref().filter(|_| draw.character);
-                let draws = map.encode(encoder, character);
+                let mut draws = map.encode(encoder, character);
                 // Only a model that reads the penumbra map pays for it.
                 let reads = draw.character && draw.shading.is_some_and(|m| m.effects().penumbra);
                 if let (Some(p), true) = (&self.penumbra, reads) {
-                    p.encode(encoder);
+                    draws += p.encode(encoder);
                 }
                 draws
             }
