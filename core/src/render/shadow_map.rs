@@ -204,20 +204,7 @@ fn depth_only(
 impl ShadowMap {
     pub fn new(device: &wgpu::Device, layouts: &Layouts, size: u32) -> Self {
         let size = size.max(1);
-        let texture = device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("shadow map"),
-            size: wgpu::Extent3d {
-                width: size,
-                height: size,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: SHADOW_FORMAT,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
-            view_formats: &[],
-        });
+        let texture = depth_texture(device, size, "shadow map");
         let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
         let target = texture.create_view(&wgpu::TextureViewDescriptor::default());
         let caster_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -327,21 +314,7 @@ impl ShadowMap {
         encoder: &mut wgpu::CommandEncoder,
         character: Option<&CharacterGpu>,
     ) -> u32 {
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("shadow map"),
-            color_attachments: &[],
-            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                view: &self.target,
-                depth_ops: Some(wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(1.0),
-                    store: wgpu::StoreOp::Store,
-                }),
-                stencil_ops: None,
-            }),
-            timestamp_writes: None,
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
+        let mut pass = depth_pass(encoder, &self.target, "shadow map");
         pass.set_bind_group(0, &self.caster_group, &[]);
         let mut draws = 0;
         if let (Some(character), true) = (character, self.character_casts) {
@@ -374,11 +347,21 @@ pub fn comparison_sampler(device: &wgpu::Device) -> wgpu::Sampler {
 
 /// A 1×1 map cleared to the far plane, bound where no shadow map exists (nothing casts).
 pub fn placeholder(device: &wgpu::Device, queue: &wgpu::Queue) -> wgpu::TextureView {
-    let texture = device.create_texture(&wgpu::TextureDescriptor {
-        label: Some("no shadow map"),
+    let view = depth_texture(device, 1, "no shadow map")
+        .create_view(&wgpu::TextureViewDescriptor::default());
+    let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+    drop(depth_pass(&mut encoder, &view, "no shadow map"));
+    queue.submit([encoder.finish()]);
+    view
+}
+
+/// A `size`² depth texture the shadow pass renders and receivers sample.
+fn depth_texture(device: &wgpu::Device, size: u32, label: &str) -> wgpu::Texture {
+    device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
         size: wgpu::Extent3d {
-            width: 1,
-            height: 1,
+            width: size,
+            height: size,
             depth_or_array_layers: 1,
         },
         mip_level_count: 1,
@@ -387,14 +370,20 @@ pub fn placeholder(device: &wgpu::Device, queue: &wgpu::Queue) -> wgpu::TextureV
         format: SHADOW_FORMAT,
         usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
         view_formats: &[],
-    });
-    let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
-    let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+    })
+}
+
+/// A depth-only pass into `view`, cleared to the far plane and stored.
+fn depth_pass<'e>(
+    encoder: &'e mut wgpu::CommandEncoder,
+    view: &wgpu::TextureView,
+    label: &str,
+) -> wgpu::RenderPass<'e> {
     encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-        label: Some("no shadow map"),
+        label: Some(label),
         color_attachments: &[],
         depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-            view: &view,
+            view,
             depth_ops: Some(wgpu::Operations {
                 load: wgpu::LoadOp::Clear(1.0),
                 store: wgpu::StoreOp::Store,
@@ -404,9 +393,7 @@ pub fn placeholder(device: &wgpu::Device, queue: &wgpu::Queue) -> wgpu::TextureV
         timestamp_writes: None,
         occlusion_query_set: None,
         multiview_mask: None,
-    });
-    queue.submit([encoder.finish()]);
-    view
+    })
 }
 
 #[cfg(test)]
