@@ -180,8 +180,9 @@ pub fn file_name(m: &Material) -> String {
 
 const MAGIC: &[u8; 8] = b"DERMTAB1";
 
-/// What tables were baked from: the material's optics, the budget and the table sizes.
-fn header(m: &Material, budget: &Budget) -> Vec<f64> {
+/// What a shipped file was baked from: the material's optics and the budget (the start of
+/// every shipped file's header: these tables' and the sphere LUTs').
+pub fn baked_from(m: &Material, budget: &Budget) -> Vec<f64> {
     let mut h: Vec<f64> = Vec::new();
     h.extend(m.sigma_a);
     h.extend(m.sigma_s_prime);
@@ -200,6 +201,12 @@ fn header(m: &Material, budget: &Budget) -> Vec<f64> {
         ]
         .map(|v| v as f64),
     );
+    h
+}
+
+/// What tables were baked from: [`baked_from`] and the table sizes.
+fn header(m: &Material, budget: &Budget) -> Vec<f64> {
+    let mut h = baked_from(m, budget);
     h.extend([RINGS, OBLIQUE_NODES, SLAB_NODES].map(|v| v as f64));
     h
 }

@@ -77,26 +77,9 @@ pub fn file_name(m: &Material) -> String {
 
 const MAGIC: &[u8; 8] = b"DERMLUT2";
 
-/// What a LUT was baked from: the material's optics and the budget.
+/// What a LUT was baked from: [`bake::baked_from`] and the LUT's size.
 fn header(m: &Material, budget: &Budget) -> Vec<f64> {
-    let mut h: Vec<f64> = Vec::new();
-    h.extend(m.sigma_a);
-    h.extend(m.sigma_s_prime);
-    h.extend([m.eta, m.g]);
-    h.extend(
-        [
-            budget.kernel,
-            budget.oblique,
-            budget.slab,
-            budget.kernel_events,
-            budget.events,
-            budget.max_events,
-            budget.min_photons,
-            budget.sphere,
-            budget.sphere_events,
-        ]
-        .map(|v| v as f64),
-    );
+    let mut h = bake::baked_from(m, budget);
     h.extend([LUT_U as f64, LUT_ROWS as f64]);
     h
 }
