@@ -13,7 +13,7 @@ use dermis_core::camera::look_at;
 use dermis_core::game::Key;
 use dermis_core::governor::GovernorConfig;
 use dermis_core::render::{
-    key_light, DrawSet, FrameView, Gpu, RgbaImage, EXPOSURE, OFFSCREEN_FORMAT, SHADOW_MAP_SIZE,
+    key_light, FrameView, Gpu, RgbaImage, EXPOSURE, OFFSCREEN_FORMAT, SHADOW_MAP_SIZE,
 };
 use dermis_core::scene::SceneAssets;
 use dermis_core::shading::ShadingModel;
@@ -74,26 +74,9 @@ impl Rig {
     /// The uploaded frame (without the UI), shadows on or off, the character drawn or not.
     fn shoot(&mut self, shadows: bool, character: bool) -> RgbaImage {
         self.gg.renderer.set_blob_shadows(shadows);
-        let mut encoder = self
-            .gpu
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
-        let draw = DrawSet {
-            character,
-            ..self.session.draw_set()
-        };
-        self.gg.renderer.encode(
-            &mut encoder,
-            &self.target.targets,
-            &self.target.view,
-            draw,
-            None,
-            None,
-        );
-        self.target.copy_out(&mut encoder);
-        self.gpu.queue.submit([encoder.finish()]);
+        let image = self.shoot_frame(character);
         self.gg.renderer.set_blob_shadows(true);
-        self.target.read(&self.gpu)
+        image
     }
 
     /// The pixel where the world point `p` lands this frame.

@@ -9,9 +9,7 @@ mod common;
 use common::Rig;
 use dermis_core::camera::look_at;
 use dermis_core::governor::GovernorConfig;
-use dermis_core::render::{
-    key_light, DrawSet, FrameView, Gpu, RgbaImage, EXPOSURE, SHADOW_MAP_SIZE,
-};
+use dermis_core::render::{key_light, FrameView, Gpu, RgbaImage, EXPOSURE, SHADOW_MAP_SIZE};
 use dermis_core::shading::ShadingModel;
 use dermis_measure::ground_truth::{self as reference, metric, ReferenceSet, Scene};
 use dermis_measure::scenes::SceneRenderer;
@@ -55,25 +53,7 @@ impl Rig {
                 exposure: EXPOSURE,
             },
         );
-        let mut encoder = self
-            .gpu
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
-        let draw = DrawSet {
-            character,
-            ..self.session.draw_set()
-        };
-        self.gg.renderer.encode(
-            &mut encoder,
-            &self.target.targets,
-            &self.target.view,
-            draw,
-            None,
-            None,
-        );
-        self.target.copy_out(&mut encoder);
-        self.gpu.queue.submit([encoder.finish()]);
-        self.target.read(&self.gpu)
+        self.shoot_frame(character)
     }
 
     fn pixel_of(&self, p: Vec3) -> (u32, u32) {

@@ -5,7 +5,7 @@
 use std::path::Path;
 
 use dermis_core::game::{GameGpu, Session, Viewport};
-use dermis_core::render::{Gpu, Offscreen, OFFSCREEN_FORMAT};
+use dermis_core::render::{DrawSet, Gpu, Offscreen, RgbaImage, OFFSCREEN_FORMAT};
 use dermis_core::scene::SceneAssets;
 use dermis_core::ui::Insets;
 
@@ -51,5 +51,29 @@ impl Rig {
         self.session.update(dt, &self.assets.character, viewport);
         self.gg
             .upload(&self.gpu.queue, &mut self.session, &self.assets.character);
+    }
+
+    /// The uploaded frame without the UI, the character drawn or not, read back.
+    #[allow(dead_code)] // Not every test binary that shares the rig shoots frames.
+    pub fn shoot_frame(&mut self, character: bool) -> RgbaImage {
+        let mut encoder = self
+            .gpu
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+        let draw = DrawSet {
+            character,
+            ..self.session.draw_set()
+        };
+        self.gg.renderer.encode(
+            &mut encoder,
+            &self.target.targets,
+            &self.target.view,
+            draw,
+            None,
+            None,
+        );
+        self.target.copy_out(&mut encoder);
+        self.gpu.queue.submit([encoder.finish()]);
+        self.target.read(&self.gpu)
     }
 }
