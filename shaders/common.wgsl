@@ -3,7 +3,7 @@
 const PI: f32 = 3.14159265358979;
 const INV_PI: f32 = 0.318309886183791;
 
-struct Frame {
+struct FrameUniform {
     view_proj: mat4x4<f32>,
     camera_pos: vec4<f32>,
     // xyz: point-light position (m); w: radiant intensity.
@@ -25,7 +25,7 @@ struct Frame {
     penumbra: vec4<f32>,
 };
 
-@group(0) @binding(0) var<uniform> frame: Frame;
+@group(0) @binding(0) var<uniform> frame: FrameUniform;
 @group(0) @binding(1) var shadow_map: texture_depth_2d;
 @group(0) @binding(2) var shadow_sampler: sampler_comparison;
 @group(0) @binding(3) var penumbra_map: texture_2d<f32>;

@@ -13,9 +13,10 @@
 // Driver: core/src/render/sss_pass.rs.
 #import common
 
+// `subsurface::MAX_RINGS` in Rust: the layout test compares `KernelUniform`'s size.
 const MAX_RINGS: u32 = 24u;
 
-struct Kernel {
+struct KernelUniform {
     // x: rings used, y: angles per ring, z: depth tolerance (relative pixel size), w: unused.
     counts: vec4<f32>,
     // The clear colour as displayed: where nothing was drawn (colour alpha < 0).
@@ -27,7 +28,7 @@ struct Kernel {
     rings: array<vec4<f32>, MAX_RINGS>,
 };
 
-@group(1) @binding(0) var<uniform> kernel: Kernel;
+@group(1) @binding(0) var<uniform> kernel: KernelUniform;
 @group(1) @binding(1) var colour_tex: texture_2d<f32>;
 @group(1) @binding(2) var spread_tex: texture_2d<f32>;
 @group(1) @binding(3) var spread_sampler: sampler;

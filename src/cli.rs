@@ -6,7 +6,7 @@ use clap::{Parser, Subcommand};
 use dermis_core::shading::{Material, ShadingModel};
 
 use crate::cmd;
-use crate::cmd::args;
+use crate::cmd::args::{self, parse_material, parse_model};
 
 #[derive(Parser, Debug)]
 #[command(
@@ -126,14 +126,6 @@ pub enum Command {
     Bench(cmd::bench::BenchArgs),
     /// Play on autoplay for N seconds and report sustained frame time, pacing and memory.
     Soak(cmd::soak::SoakArgs),
-}
-
-pub fn parse_model(s: &str) -> Result<ShadingModel, String> {
-    s.parse()
-}
-
-pub fn parse_material(s: &str) -> Result<Material, String> {
-    Material::preset(s).ok_or_else(|| format!("unknown material `{s}` (known: skin1, white-coat)"))
 }
 
 /// The window's output checks, before anything is loaded.

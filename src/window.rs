@@ -163,8 +163,13 @@ impl App {
         let format = target.format();
         match &mut self.mode {
             Mode::Game {
-                assets, gpu: slot, ..
-            } => *slot = Some(Box::new(GameGpu::new(&gpu, format, assets)?)),
+                assets,
+                gpu: slot,
+                session,
+            } => {
+                let gg = GameGpu::new(&gpu, format, assets, session.shading())?;
+                *slot = Some(Box::new(gg));
+            }
             Mode::Demo { demo, renderer } => {
                 let mut r = Renderer::new(&gpu, format);
                 demo.upload(&gpu, &mut r)?;

@@ -3,27 +3,29 @@
 
 use std::path::Path;
 
-use dermis_core::game::GameGpu;
-use dermis_core::render::{Gpu, LiveObjects, PipelineSet, OFFSCREEN_FORMAT};
+use dermis_core::game::{GameFrame, GameGpu, Screen, Session};
+use dermis_core::render::{
+    Clock, FrameDriver, Gpu, LiveObjects, Offscreen, Output, PipelineSet, OFFSCREEN_FORMAT,
+};
 use dermis_core::scene::SceneAssets;
-use dermis_core::shader::{compose, compose_from, ShaderDefs, MODULES};
+use dermis_core::shader::{compose, compose_from, modules, ShaderDefs};
 use dermis_core::shading::ShadingModel;
 
-/// The subsurface / skin-shading modules.
-const SKIN_MODULES: [&str; 12] = [
-    "ward",
-    "ward_lobe",
-    "ward_nd",
-    "dipole",
-    "dipole_nd",
-    "oss",
-    "oss_nd",
-    "burley",
-    "subsurface",
-    "tabulated",
-    "preintegrated",
-    "fresnel",
-];
+/// The modules composed into some model's character shader but not into the props': the
+/// skin-shading code (derived from the registry, so a new model's modules are in it).
+fn skin_modules() -> Vec<&'static str> {
+    let marker = |src: &str, name: &str| src.contains(&format!("// ---- module {name} ----"));
+    let prop = compose("prop", &ShaderDefs::new()).unwrap();
+    let characters: Vec<String> = ShadingModel::ALL
+        .iter()
+        .map(|m| compose("character", &m.defs()).unwrap())
+        .collect();
+    modules()
+        .iter()
+        .map(|(n, _)| *n)
+        .filter(|n| !marker(&prop, n) && characters.iter().any(|c| marker(c, n)))
+        .collect()
+}
 
 fn spirv_instructions(src: &str) -> usize {
     let module = naga::front::wgsl::parse_str(src).unwrap();
@@ -46,12 +48,17 @@ fn spirv_instructions(src: &str) -> usize {
 
 #[test]
 fn the_prop_shader_is_identical_without_the_skin_modules() {
-    let without: Vec<(&str, &str)> = MODULES
+    let skin = skin_modules();
+    // Every model's own module is among them.
+    for m in ShadingModel::ALL {
+        assert!(skin.contains(&m.module()), "{m}");
+    }
+    let without: Vec<(&str, &str)> = modules()
         .iter()
         .copied()
-        .filter(|(n, _)| !SKIN_MODULES.contains(n))
+        .filter(|(n, _)| !skin.contains(n))
         .collect();
-    assert!(without.len() < MODULES.len());
+    assert!(without.len() < modules().len());
     let full = compose("prop", &ShaderDefs::new()).unwrap();
     let bare = compose_from(&without, "prop", &ShaderDefs::new()).unwrap();
     assert_eq!(full, bare);
@@ -66,7 +73,9 @@ fn the_game_builds_exactly_the_pipelines_it_can_reach() {
     let assets =
         SceneAssets::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("assets"), None).unwrap();
     let before = LiveObjects::read(&gpu.device);
-    let gg = GameGpu::new(&gpu, OFFSCREEN_FORMAT, &assets).unwrap();
+    let mut gg = GameGpu::new(&gpu, OFFSCREEN_FORMAT, &assets, ShadingModel::DEFAULT).unwrap();
+    // The first model's pipeline now, the others' from the background builder.
+    gg.finish_loading();
     let after = LiveObjects::read(&gpu.device);
     let needed = PipelineSet::game();
     assert_eq!(gg.renderer.built_pipelines(), needed);
@@ -84,6 +93,46 @@ fn the_game_builds_exactly_the_pipelines_it_can_reach() {
         after.render_pipelines - before.render_pipelines,
         needed.models.len() as isize + 6 + 1 + 2
     );
+}
+
+#[test]
+fn a_model_chosen_before_its_pipeline_arrives_is_drawn_and_play_finds_every_pipeline() {
+    let gpu = Gpu::headless().unwrap_or_else(|e| panic!("{e}"));
+    let assets =
+        SceneAssets::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("assets"), None).unwrap();
+    // The first pipeline is the first model's; the menu's first frame shows the last one.
+    let (first, shown) = (
+        ShadingModel::ALL[0],
+        ShadingModel::ALL[ShadingModel::ALL.len() - 1],
+    );
+    let mut gg = GameGpu::new(&gpu, OFFSCREEN_FORMAT, &assets, first).unwrap();
+    let target = Offscreen::new(&gpu, 96, 72);
+    let mut session = Session::new(&assets.character, 1, None, true);
+    session.settings.set_shading_model(shown);
+    let mut driver = FrameDriver::new(Clock::Fixed(1.0 / 60.0));
+    driver.sync = true;
+    let mut frame = |session: &mut Session, gg: &mut GameGpu| {
+        let mut f = GameFrame::new(session, gg, &assets.character);
+        f.run(&mut driver, &gpu, Output::Offscreen(&target))
+            .unwrap();
+        f.stats
+    };
+    let stats = frame(&mut session, &mut gg);
+    // The character's triangles were drawn: its pipeline was waited for, not skipped.
+    assert_eq!(session.drawn_model(), shown);
+    assert!(
+        stats.triangles >= gg.renderer.character_triangles(),
+        "{stats:?}"
+    );
+    // The bot starts the run after half a second: by then every pipeline is in.
+    while session.game.screen() != Screen::Play {
+        frame(&mut session, &mut gg);
+    }
+    frame(&mut session, &mut gg);
+    assert!(!gg.renderer.pipelines_loading());
+    let live = LiveObjects::read(&gpu.device);
+    gg.finish_loading();
+    assert_eq!(LiveObjects::read(&gpu.device), live);
 }
 
 #[test]

@@ -21,7 +21,7 @@ fn play_creates_nothing_and_wgpu_allocations_do_not_grow() {
     let assets =
         SceneAssets::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("assets"), None).unwrap();
     let (w, h) = (160, 90);
-    let mut gg = GameGpu::new(&gpu, OFFSCREEN_FORMAT, &assets).unwrap();
+    let mut gg = GameGpu::new(&gpu, OFFSCREEN_FORMAT, &assets, ShadingModel::DEFAULT).unwrap();
     let target = Offscreen::new(&gpu, w, h);
     let mut session = Session::new(&assets.character, 7, None, true);
     // From the first model in menu order, whatever the default: both measured windows below

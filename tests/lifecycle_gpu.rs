@@ -10,6 +10,7 @@ use dermis_core::game::{GameGpu, Session, Viewport};
 use dermis_core::lifecycle::{Action, Event, Lifecycle};
 use dermis_core::render::{FrameStatus, Gpu, LiveObjects, Offscreen, OFFSCREEN_FORMAT};
 use dermis_core::scene::SceneAssets;
+use dermis_core::shading::ShadingModel;
 use dermis_core::ui::Insets;
 
 #[test]
@@ -18,7 +19,7 @@ fn a_thousand_lifecycle_cycles_leak_no_gpu_object() {
     let assets =
         SceneAssets::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("assets"), None).unwrap();
     // Device, pipelines and scene live across the whole run, as on a phone.
-    let mut gg = GameGpu::new(&gpu, OFFSCREEN_FORMAT, &assets).unwrap();
+    let mut gg = GameGpu::new(&gpu, OFFSCREEN_FORMAT, &assets, ShadingModel::DEFAULT).unwrap();
     let mut session = Session::new(&assets.character, 3, None, true);
     // The "window surface": an offscreen colour texture (created on CreateSurface, resized
     // on Reconfigure, dropped on DropSurface) with its MSAA colour and depth targets.
@@ -66,6 +67,7 @@ fn a_thousand_lifecycle_cycles_leak_no_gpu_object() {
         gpu.queue.submit([encoder.finish()]);
     };
     frame(&targets, &mut session, &mut gg);
+    gg.finish_loading();
     gpu.wait();
     let before = LiveObjects::read(&gpu.device);
     let page = dermis_core::heap::page_bytes();

@@ -97,7 +97,7 @@ fn the_game_every_model_and_every_pass_run_under_the_phone_limits() {
     }
 
     // The game: the bot plays and the player steps through every model (UI pass included).
-    let mut gg = GameGpu::new(&gpu, OFFSCREEN_FORMAT, &assets).unwrap();
+    let mut gg = GameGpu::new(&gpu, OFFSCREEN_FORMAT, &assets, ShadingModel::DEFAULT).unwrap();
     let target = Offscreen::new(&gpu, w, h);
     let mut session = Session::new(&assets.character, 7, None, true);
     let mut driver = FrameDriver::new(Clock::Fixed(1.0 / 60.0));

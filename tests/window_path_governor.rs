@@ -17,7 +17,7 @@ fn the_window_path_changes_tier_under_a_simulated_budget() {
     let gpu = Gpu::headless().unwrap_or_else(|e| panic!("{e}"));
     let assets =
         SceneAssets::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("assets"), None).unwrap();
-    let mut gg = GameGpu::new(&gpu, OFFSCREEN_FORMAT, &assets).unwrap();
+    let mut gg = GameGpu::new(&gpu, OFFSCREEN_FORMAT, &assets, ShadingModel::DEFAULT).unwrap();
     let target = Offscreen::new(&gpu, 160, 90);
     let mut session = Session::new(&assets.character, 5, None, true);
     session.settings.set_shading_model(ShadingModel::Oss);

@@ -256,16 +256,13 @@ fn soak_config(app: &AndroidApp, extras: &Extras) -> (Option<SoakConfig>, Option
     };
     let (seconds, shading, scenario) = if extras.is_test_loop() {
         let n = extras.scenario.unwrap_or(0);
-        let Some((seconds, name)) = crate::soak::scenario(n) else {
+        let Some((seconds, m)) = crate::soak::scenario(n) else {
             return (
                 None,
                 Some(format!("Game Loop scenario {n} is not defined (1, 2, 3)")),
             );
         };
-        match named(name) {
-            Ok(m) => (seconds as f64, m, Some(n)),
-            Err(e) => return (None, Some(e)),
-        }
+        (seconds as f64, m, Some(n))
     } else if extras.soak_seconds > 0 {
         let shading = match &extras.shading {
             Some(name) => match named(name) {

@@ -199,7 +199,7 @@ impl Renderer {
         );
         if previous != Some(target.format()) {
             let t0 = Instant::now();
-            let gg = GameGpu::new(gpu, target.format(), &game.assets)
+            let gg = GameGpu::new(gpu, target.format(), &game.assets, game.session.shading())
                 .map_err(|e| format!("game GPU setup: {e}"))?;
             log::info!(
                 "pipelines and scene uploaded for {:?} in {} ms",

@@ -94,8 +94,8 @@ impl Tiers {
         let front = front();
         let on_front = front.iter().position(|&m| m == chosen);
         let cheaper = front.iter().enumerate().filter(|&(i, m)| match chosen {
-            // A plain BRDF is already the floor.
-            ShadingModel::Ward | ShadingModel::WardPrinted => false,
+            // A model with no subsurface transport (a plain BRDF) is already the floor.
+            c if !c.effects().subsurface => false,
             _ if on_front.is_some() => Some(i) > on_front,
             c if c.effects().screen_space => !m.effects().screen_space,
             _ => i + 1 == front.len(),
@@ -475,9 +475,11 @@ mod tests {
         let f = front();
         assert!(f.len() >= 2, "{f:?}");
         assert!(!f[f.len() - 1].effects().screen_space);
+        // Comments, blank lines and unknown names are skipped; names are trimmed.
+        let (a, b) = (ShadingModel::ALL[0], ShadingModel::DEFAULT);
         assert_eq!(
-            parse_front("# c\n\nward\nnot-a-model\n preintegrated \n"),
-            vec![ShadingModel::Ward, ShadingModel::Preintegrated]
+            parse_front(&format!("# c\n\n{a}\nnot-a-model\n {b} \n")),
+            vec![a, b]
         );
         // Every choice starts its own list, and nothing repeats.
         for m in ShadingModel::ALL {

@@ -3,7 +3,7 @@
 //! `.ci/run` installs) or a `tint` executable on the PATH. Without either the tint check says
 //! loudly that it did not run, and fails under `CI=true`.
 
-use dermis_core::shader::{compose, ShaderDefs, MODULES};
+use dermis_core::shader::{compose, modules, ShaderDefs};
 use dermis_core::shading::ShadingModel;
 
 /// Every (label, composed source) the renderer can build.
@@ -115,7 +115,7 @@ fn every_shader_passes_naga_validation_and_both_backends() {
 #[test]
 fn every_module_file_is_used() {
     let composed: String = all_shaders().into_iter().map(|(_, s)| s).collect();
-    for (name, _) in MODULES {
+    for (name, _) in modules() {
         assert!(
             composed.contains(&format!("// ---- module {name} ----")),
             "module {name} is never composed"

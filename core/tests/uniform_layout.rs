@@ -3,10 +3,14 @@
 //! its shader binds at `@group(1) @binding(0)`): for every row of the registry, the WGSL struct
 //! naga parses from the model's composed shader has the Rust struct's name, size and members —
 //! the same names, in the same order, at the same offsets, of the same sizes. Renaming,
-//! reordering, retyping or dropping a member on either side fails here.
+//! reordering, retyping or dropping a member on either side fails here. The same rule holds
+//! for the other structs the GPU reads: the frame uniform every pass binds at `@group(0)
+//! @binding(0)` and the subsurface pass's kernel (`gpu_struct!`).
 
-use dermis_core::shader::compose;
-use dermis_core::shading::{Descriptor, ShadingModel};
+use dermis_core::render::FrameUniform;
+use dermis_core::shader::{compose, ShaderDefs};
+use dermis_core::shading::subsurface::{KernelUniform, MAX_RINGS};
+use dermis_core::shading::{Layout, ShadingModel, Uniform};
 
 /// A uniform struct: name, size in bytes, members (name, offset, size) in order.
 #[derive(Debug, PartialEq)]
@@ -16,13 +20,12 @@ struct Struct {
     members: Vec<(String, usize, usize)>,
 }
 
-/// The Rust declaration recorded in the registry row.
-fn rust_struct(d: &Descriptor) -> Struct {
+/// A Rust declaration (`gpu_struct!`/`model_uniform!`'s recorded layout).
+fn rust_struct(layout: &Layout) -> Struct {
     Struct {
-        name: d.uniform.name.to_string(),
-        size: d.uniform.size,
-        members: d
-            .uniform
+        name: layout.name.to_string(),
+        size: layout.size,
+        members: layout
             .fields
             .iter()
             .map(|f| (f.name.to_string(), f.offset, f.size))
@@ -30,19 +33,21 @@ fn rust_struct(d: &Descriptor) -> Struct {
     }
 }
 
-/// The struct bound at `@group(1) @binding(0)` in `source`, as naga lays it out.
+/// The model uniform (`@group(1) @binding(0)`) in `source`, as naga lays it out.
 fn wgsl_struct(label: &str, source: &str) -> Struct {
+    wgsl_struct_at(label, source, 1)
+}
+
+/// The struct bound at `@group(group) @binding(0)` in `source`, as naga lays it out.
+fn wgsl_struct_at(label: &str, source: &str, group: u32) -> Struct {
     let module = naga::front::wgsl::parse_str(source)
         .unwrap_or_else(|e| panic!("{label}: {}", e.emit_to_string(source)));
-    let binding = naga::ResourceBinding {
-        group: 1,
-        binding: 0,
-    };
+    let binding = naga::ResourceBinding { group, binding: 0 };
     let (_, var) = module
         .global_variables
         .iter()
         .find(|(_, v)| v.binding == Some(binding))
-        .unwrap_or_else(|| panic!("{label}: nothing bound at @group(1) @binding(0)"));
+        .unwrap_or_else(|| panic!("{label}: nothing bound at @group({group}) @binding(0)"));
     assert_eq!(var.space, naga::AddressSpace::Uniform, "{label}");
     let ty = &module.types[var.ty];
     let naga::TypeInner::Struct { members, span } = &ty.inner else {
@@ -101,7 +106,7 @@ fn every_model_declares_the_same_uniform_in_rust_and_wgsl() {
     let mut bad = Vec::new();
     for model in ShadingModel::ALL {
         let d = model.descriptor();
-        let rust = rust_struct(d);
+        let rust = rust_struct(&d.uniform);
         let wgsl = wgsl_struct(d.name, &source(model));
         assert!(!rust.members.is_empty(), "{}: an empty uniform", d.name);
         for m in mismatches(&rust, &wgsl) {
@@ -118,7 +123,7 @@ fn every_model_declares_the_same_uniform_in_rust_and_wgsl() {
 #[test]
 fn a_renamed_or_reordered_member_on_either_side_is_caught() {
     let d = ShadingModel::Ward.descriptor();
-    let rust = rust_struct(d);
+    let rust = rust_struct(&d.uniform);
     let src = source(ShadingModel::Ward);
     assert!(mismatches(&rust, &wgsl_struct("ward", &src)).is_empty());
     // WGSL side: two members of the same type swapped (same offsets and sizes, other names).
@@ -136,10 +141,42 @@ fn a_renamed_or_reordered_member_on_either_side_is_caught() {
     let renamed = src.replace("rho_s", "rho_spec");
     assert!(!mismatches(&rust, &wgsl_struct("renamed", &renamed)).is_empty());
     // Rust side: a member renamed, or two members reordered.
-    let mut r = rust_struct(d);
+    let mut r = rust_struct(&d.uniform);
     r.members[1].0 = "tex".into();
     assert!(!mismatches(&r, &wgsl_struct("ward", &src)).is_empty());
-    let mut r = rust_struct(d);
+    let mut r = rust_struct(&d.uniform);
     r.members.swap(2, 3);
     assert!(!mismatches(&r, &wgsl_struct("ward", &src)).is_empty());
+}
+
+#[test]
+fn the_frame_uniform_and_the_subsurface_kernel_are_declared_the_same_in_rust_and_wgsl() {
+    // Every pass that binds the frame: the character (each model), the props, the
+    // subsurface pass, the blob shadows.
+    let mut frames: Vec<(String, String)> = ShadingModel::ALL
+        .iter()
+        .map(|m| (format!("character/{m}"), source(*m)))
+        .collect();
+    for entry in ["prop", "sss_pass", "shadow"] {
+        frames.push((entry.into(), compose(entry, &ShaderDefs::new()).unwrap()));
+    }
+    let frame = rust_struct(&FrameUniform::LAYOUT);
+    for (label, src) in &frames {
+        let bad = mismatches(&frame, &wgsl_struct_at(label, src, 0));
+        assert!(bad.is_empty(), "{label}: FrameUniform differs: {bad:?}");
+    }
+    // The kernel, whose ring array's length is `MAX_RINGS` on both sides.
+    let sss = compose("sss_pass", &ShaderDefs::new()).unwrap();
+    let kernel = rust_struct(&KernelUniform::LAYOUT);
+    let bad = mismatches(&kernel, &wgsl_struct("sss_pass", &sss));
+    assert!(bad.is_empty(), "KernelUniform differs: {bad:?}");
+    // …and a different ring count on the WGSL side is caught.
+    let (n, m) = (MAX_RINGS, MAX_RINGS - 1);
+    let fewer = sss.replacen(
+        &format!("const MAX_RINGS: u32 = {n}u;"),
+        &format!("const MAX_RINGS: u32 = {m}u;"),
+        1,
+    );
+    assert_ne!(fewer, sss, "sss_pass.wgsl does not declare MAX_RINGS = {n}");
+    assert!(!mismatches(&kernel, &wgsl_struct("fewer", &fewer)).is_empty());
 }

@@ -284,6 +284,20 @@ pub fn check_out_dir(dir: &Path) -> Result<(), String> {
     Ok(())
 }
 
+/// A shading model by its registry name.
+pub fn parse_model(s: &str) -> Result<dermis_core::shading::ShadingModel, String> {
+    s.parse()
+}
+
+/// A material preset by name.
+pub fn parse_material(s: &str) -> Result<dermis_core::shading::Material, String> {
+    use dermis_core::shading::material::PRESETS;
+    dermis_core::shading::Material::preset(s).ok_or_else(|| {
+        let known: Vec<&str> = PRESETS.iter().map(|m| m.name).collect();
+        format!("unknown material `{s}` (known: {})", known.join(", "))
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -8,7 +8,7 @@ use dermis_core::scene::SceneAssets;
 use dermis_core::shading::ShadingModel;
 use serde_json::{json, Value};
 
-use crate::cli::parse_model;
+use crate::cmd::args::parse_model;
 use crate::cmd::args::{parse_bench_frames, parse_rounds, parse_size, shading_help};
 use crate::cmd::progress::Progress;
 use crate::cmd::stats::ratio_ci;
@@ -48,7 +48,9 @@ pub fn run(args: EffectsArgs) -> Result<(), String> {
     let assets = SceneAssets::load(&crate::paths::assets_dir(), None).map_err(|e| e.to_string())?;
     let gpu = Gpu::headless().map_err(|e| e.to_string())?;
     let (w, h) = args.size;
-    let mut gg = GameGpu::new(&gpu, OFFSCREEN_FORMAT, &assets)?;
+    let mut gg = GameGpu::new(&gpu, OFFSCREEN_FORMAT, &assets, ShadingModel::DEFAULT)?;
+    // Every pipeline in place before the first measured frame.
+    gg.finish_loading();
     let target = Offscreen::new(&gpu, w, h);
     let mut session = Session::new(&assets.character, 1, None, true);
     session.settings.set_shading_model(args.shading);

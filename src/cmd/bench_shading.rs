@@ -239,7 +239,7 @@ impl CostScene {
     fn coverage(&self, gpu: &Gpu) -> f64 {
         self.encode(gpu, None, false, false);
         let empty = self.target.read(gpu);
-        self.encode(gpu, Some(ShadingModel::Ward), true, false);
+        self.encode(gpu, Some(ShadingModel::BASELINE), true, false);
         let drawn = self.target.read(gpu);
         let n = empty.pixels.len() / 4;
         let covered = (0..n)

@@ -22,7 +22,7 @@ pub fn frame_close_up(
             gpu,
             assets,
             &Shot {
-                shading: Some(ShadingModel::Ward),
+                shading: Some(ShadingModel::BASELINE),
                 props: false,
                 ..*shot
             },
@@ -51,7 +51,7 @@ pub fn time_models(
 ) -> Result<Vec<Vec<f64>>, String> {
     let mut out = vec![Vec::with_capacity(rounds); models.len()];
     for _ in 0..3 {
-        still.time_character_pass(gpu, Some(ShadingModel::Ward));
+        still.time_character_pass(gpu, Some(ShadingModel::BASELINE));
     }
     for r in 0..rounds {
         for k in 0..models.len() {
@@ -81,7 +81,7 @@ pub fn time_blob_shadows(
     let mut out = vec![[Vec::with_capacity(rounds), Vec::with_capacity(rounds)]; models.len()];
     for on in [false, true] {
         still.renderer.set_blob_shadows(on);
-        still.time_pass(gpu, Some(ShadingModel::Ward), true);
+        still.time_pass(gpu, Some(ShadingModel::BASELINE), true);
     }
     for r in 0..rounds {
         for k in 0..models.len() {

@@ -10,7 +10,7 @@ use dermis_core::scene::SceneAssets;
 use dermis_core::shading::ShadingModel;
 use serde_json::json;
 
-use crate::cli::parse_model;
+use crate::cmd::args::parse_model;
 use crate::cmd::args::{
     check_out_dir, parse_fps, parse_play_frames, parse_seed, parse_size, prealloc, shading_help,
 };
@@ -70,7 +70,9 @@ pub fn run(args: PlayArgs) -> Result<(), String> {
     let assets = SceneAssets::load(&crate::paths::assets_dir(), None).map_err(|e| e.to_string())?;
     let gpu = Gpu::headless().map_err(|e| e.to_string())?;
     let (w, h) = args.size;
-    let mut gg = GameGpu::new(&gpu, OFFSCREEN_FORMAT, &assets)?;
+    let mut gg = GameGpu::new(&gpu, OFFSCREEN_FORMAT, &assets, ShadingModel::DEFAULT)?;
+    // Every pipeline in place before the first measured frame.
+    gg.finish_loading();
     let target = Offscreen::new(&gpu, w, h);
     let mut session = Session::new(&assets.character, args.seed, None, args.autoplay);
     if let Some(m) = args.shading {

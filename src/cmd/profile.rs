@@ -11,8 +11,8 @@ use dermis_measure::ground_truth::{self, Scene};
 use dermis_measure::scenes::SceneRenderer;
 use serde_json::{json, Map, Value};
 
-use crate::cli::{parse_material, parse_model};
 use crate::cmd::args::{parse_edge_mm, parse_eta, parse_g, parse_light_height_mm, MAX_RADIUS_MM};
+use crate::cmd::args::{parse_material, parse_model};
 use crate::cmd::progress::Progress;
 /// Annuli of the default edges.
 const DEFAULT_BINS: usize = 24;

@@ -9,10 +9,10 @@ use dermis_core::shading::{Material, ShadingModel};
 use dermis_core::still::{Shot, StillRenderer};
 use glam::Vec3;
 
-use crate::cli::{parse_material, parse_model};
 use crate::cmd::args::{
     check_out_file, parse_index, parse_size, parse_time, parse_vec3, shading_help,
 };
+use crate::cmd::args::{parse_material, parse_model};
 use crate::cmd::progress::Progress;
 
 #[derive(clap::Args, Debug)]

@@ -58,7 +58,7 @@ use dermis_core::soak::{
     config_json, report, summary_lines, write_atomic, Recorder, RecorderConfig, RunInfo, Writer,
 };
 
-use crate::cli::parse_model;
+use crate::cmd::args::parse_model;
 use crate::cmd::args::{
     check_out_dir, parse_fps, parse_seconds, parse_seed, parse_size, shading_help,
 };
@@ -130,7 +130,9 @@ pub fn run(args: SoakArgs) -> Result<(), String> {
     let assets = SceneAssets::load(&crate::paths::assets_dir(), None).map_err(|e| e.to_string())?;
     let gpu = Gpu::headless().map_err(|e| e.to_string())?;
     let (w, h) = args.size;
-    let mut gg = GameGpu::new(&gpu, OFFSCREEN_FORMAT, &assets)?;
+    let mut gg = GameGpu::new(&gpu, OFFSCREEN_FORMAT, &assets, ShadingModel::DEFAULT)?;
+    // Every pipeline in place before the first measured frame.
+    gg.finish_loading();
     setup.finish();
     let target = Offscreen::new(&gpu, w, h);
     let mut session = Session::new(&assets.character, args.seed, None, true);

@@ -4,7 +4,7 @@ use dermis_core::shading::{prediction, Material, ShadingModel};
 use dermis_measure::mc::{self, Medium};
 use serde_json::{json, Map, Value};
 
-use crate::cli::parse_material;
+use crate::cmd::args::parse_material;
 use crate::cmd::args::{parse_eta, parse_g, parse_seed, parse_sss_photons};
 use crate::cmd::progress::Progress;
 

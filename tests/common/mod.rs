@@ -7,6 +7,7 @@ use std::path::Path;
 use dermis_core::game::{GameGpu, Session, Viewport};
 use dermis_core::render::{DrawSet, Gpu, Offscreen, RgbaImage, OFFSCREEN_FORMAT};
 use dermis_core::scene::SceneAssets;
+use dermis_core::shading::ShadingModel;
 use dermis_core::ui::Insets;
 
 pub struct Rig {
@@ -23,7 +24,7 @@ impl Rig {
         let gpu = Gpu::headless().unwrap_or_else(|e| panic!("{e}"));
         let assets = SceneAssets::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("assets"), None)
             .unwrap_or_else(|e| panic!("{e}"));
-        let gg = GameGpu::new(&gpu, OFFSCREEN_FORMAT, &assets).unwrap();
+        let gg = GameGpu::new(&gpu, OFFSCREEN_FORMAT, &assets, ShadingModel::DEFAULT).unwrap();
         let target = Offscreen::new(&gpu, width, height);
         let session = Session::new(&assets.character, 3, None, false);
         Self {

@@ -1,35 +1,64 @@
-//! The game's GPU side: the renderer with the scene uploaded plus the UI renderer, all
-//! created at load (every shading model's pipeline included), so nothing is created in play.
+//! The game's GPU side: the renderer with the scene uploaded plus the UI renderer, created at
+//! load — the first model's pipeline with them, the other reachable models' on a background
+//! thread while the menu's first frames render, all in place before play starts, so nothing
+//! is created in play.
 
-use super::Session;
+use super::{Screen, Session};
 use crate::asset::Model;
 use crate::render::{Gpu, PipelineSet, RenderStats, Renderer, Targets, UiRenderer, MSAA_SAMPLES};
 use crate::scene::SceneAssets;
 use crate::shading::material::SKIN1;
+use crate::shading::ShadingModel;
 
 pub struct GameGpu {
     pub renderer: Renderer,
     pub ui: UiRenderer,
+    /// Frames uploaded.
+    frames: u64,
 }
 
 impl GameGpu {
+    /// The game's GPU objects; `first` (the model the first frame draws: the player's saved
+    /// choice) gets its pipeline now, the others' arrive while the first frames render.
     pub fn new(
         gpu: &Gpu,
         format: wgpu::TextureFormat,
         assets: &SceneAssets,
+        first: ShadingModel,
     ) -> Result<Self, String> {
         // Only what the game can reach: every menu model (the governor's tiers are among them).
-        let mut renderer = Renderer::with_pipelines(gpu, format, &PipelineSet::game());
+        let set = PipelineSet::game();
+        let mut renderer = Renderer::with_first_pipeline(gpu, format, &set, first);
         renderer.load_scene(gpu, &assets.character, &assets.props, &SKIN1)?;
         // Contact shadows under the runner and the props, so nothing floats.
         renderer.enable_blob_shadows(gpu);
         let (rgba, w, h) = crate::ui::atlas_rgba();
         let ui = UiRenderer::new(&gpu.device, &gpu.queue, format, MSAA_SAMPLES, &rgba, w, h);
-        Ok(Self { renderer, ui })
+        Ok(Self {
+            renderer,
+            ui,
+            frames: 0,
+        })
     }
 
-    /// This frame's uploads (palettes, uniforms, props, UI when it changed).
+    /// Waits for every pipeline still being built in the background (before counting GPU
+    /// objects; play waits for them by itself).
+    pub fn finish_loading(&mut self) {
+        self.renderer.receive_pipelines(None, true);
+    }
+
+    /// This frame's uploads (palettes, uniforms, props, UI when it changed), after installing
+    /// the pipelines built so far: waiting for the one this frame draws if it is not ready,
+    /// and for all of them once play starts.
     pub fn upload(&mut self, queue: &wgpu::Queue, session: &mut Session, character: &Model) {
+        // The builder starts once the first frame is out (it would compete with it).
+        if self.frames > 0 {
+            self.renderer.start_pipeline_builder();
+        }
+        self.frames += 1;
+        let play = session.game.screen() == Screen::Play;
+        self.renderer
+            .receive_pipelines(session.draw_set().shading, play);
         session.upload(queue, &mut self.renderer, &mut self.ui, character);
     }
 

@@ -8,7 +8,7 @@ use super::mesh::GpuMesh;
 use super::texture;
 use crate::anim::{joint_palette, Pose};
 use crate::asset::{Model, MAX_JOINTS};
-use crate::shading::{Material, ModelParams, ShadingModel};
+use crate::shading::{Lut, Material, ModelParams, ShadingModel};
 
 struct Part {
     mesh: GpuMesh,
@@ -164,13 +164,10 @@ impl CharacterGpu {
             .iter()
             .map(|&m| {
                 let buffer = param_buffer(m.name());
-                let lut = m.effects().lut.then(|| {
-                    let size = (
-                        crate::shading::preintegrated::LUT_U as u32,
-                        crate::shading::preintegrated::TEXTURE_ROWS as u32,
-                    );
-                    texture::rgba16f(device, size, m.name())
-                });
+                let lut = m
+                    .effects()
+                    .lut
+                    .then(|| texture::rgba16f(device, Lut::SIZE, m.name()));
                 let group = bind(&buffer, lut.as_ref().unwrap_or(&no_lut));
                 ModelGpu {
                     model: m,

@@ -30,8 +30,9 @@ impl Default for Light {
     }
 }
 
-#[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+crate::shading::uniform::gpu_struct! {
+/// What every pass reads at `@group(0) @binding(0)`: `FrameUniform` in `common.wgsl`, member
+/// for member (`core/tests/uniform_layout.rs`).
 pub struct FrameUniform {
     pub view_proj: [[f32; 4]; 4],
     pub camera_pos: [f32; 4],
@@ -46,6 +47,7 @@ pub struct FrameUniform {
     pub shadow: [f32; 4],
     /// x: penumbra map drawn; y: its grid size; z: the shadow map's width (m); w: edge gap.
     pub penumbra: [f32; 4],
+}
 }
 
 impl FrameUniform {

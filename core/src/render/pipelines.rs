@@ -1,5 +1,9 @@
 //! Render pipelines: one per character shading model (composed from `character.wgsl` with
-//! `shading_model` bound to the model's file) and one for props. All built at load.
+//! `shading_model` bound to the model's file) and one for props. All built at load — or, for
+//! a quick first frame, the first model's at load and the others' on a background thread
+//! started after the first frame ([`Pipelines::new`] with `first`), installed as they arrive.
+
+use std::sync::mpsc;
 
 use super::layouts::Layouts;
 use super::mesh::{instance_layout, vertex_layout};
@@ -49,11 +53,91 @@ impl PipelineSet {
 
 /// A character pipeline for each requested model, plus the unlit baseline if requested.
 pub struct CharacterPipelines {
-    pub models: Vec<(ShadingModel, wgpu::RenderPipeline)>,
-    pub unlit: Option<wgpu::RenderPipeline>,
+    models: Vec<(ShadingModel, wgpu::RenderPipeline)>,
+    unlit: Option<wgpu::RenderPipeline>,
+    /// The requested models not yet received from the background builder.
+    pending: Vec<ShadingModel>,
+    /// What the builder needs, until [`Self::start_builder`] spawns it.
+    builder: Option<Builder>,
+    arrivals: Option<mpsc::Receiver<(ShadingModel, wgpu::RenderPipeline)>>,
+}
+
+/// The background builder's inputs.
+struct Builder {
+    device: wgpu::Device,
+    layout: wgpu::PipelineLayout,
+    format: wgpu::TextureFormat,
 }
 
 impl CharacterPipelines {
+    /// Installs the pipelines the background builder has finished; blocks for `need`'s (a
+    /// model about to be drawn) or, with `all`, for every one still pending. A builder that
+    /// died leaves its models without a pipeline (logged; they draw nothing).
+    pub fn receive(&mut self, need: Option<ShadingModel>, all: bool) {
+        if all || need.is_some_and(|m| self.pending.contains(&m)) {
+            self.start_builder();
+        }
+        while !self.pending.is_empty() {
+            let Some(rx) = &self.arrivals else { break };
+            let block = all || need.is_some_and(|m| self.pending.contains(&m));
+            let got = if block {
+                rx.recv().ok()
+            } else {
+                match rx.try_recv() {
+                    Ok(p) => Some(p),
+                    Err(mpsc::TryRecvError::Empty) => return,
+                    Err(mpsc::TryRecvError::Disconnected) => None,
+                }
+            };
+            let Some((model, pipeline)) = got else {
+                log::error!(
+                    "pipeline builder stopped; without a pipeline: {:?}",
+                    self.pending
+                );
+                self.pending.clear();
+                self.arrivals = None;
+                break;
+            };
+            self.pending.retain(|m| *m != model);
+            self.models.push((model, pipeline));
+        }
+        self.arrivals = None;
+    }
+
+    /// Starts building the pending models' pipelines on a background thread (once; called
+    /// after the first frame, so the builder does not compete with it).
+    pub fn start_builder(&mut self) {
+        let Some(Builder {
+            device,
+            layout,
+            format,
+        }) = self.builder.take()
+        else {
+            return;
+        };
+        let (tx, rx) = mpsc::channel();
+        let rest = self.pending.clone();
+        let spawned = std::thread::Builder::new()
+            .name("dermis-pipelines".into())
+            .spawn(move || {
+                for m in rest {
+                    let p = model_pipeline(&device, &layout, format, m);
+                    if tx.send((m, p)).is_err() {
+                        return;
+                    }
+                }
+            });
+        if let Err(e) = spawned {
+            log::error!("cannot start the pipeline builder: {e}");
+        }
+        self.arrivals = Some(rx);
+    }
+
+    /// Whether some requested model's pipeline is still being built.
+    pub fn loading(&self) -> bool {
+        !self.pending.is_empty()
+    }
+
     pub fn get(&self, model: Option<ShadingModel>) -> Option<&wgpu::RenderPipeline> {
         match model {
             Some(model) => self
@@ -65,10 +149,17 @@ impl CharacterPipelines {
         }
     }
 
-    /// What was built.
+    /// What was requested: built, or being built (in menu order).
     pub fn built(&self) -> PipelineSet {
+        let mut models: Vec<ShadingModel> = self
+            .models
+            .iter()
+            .map(|(m, _)| *m)
+            .chain(self.pending.iter().copied())
+            .collect();
+        models.sort();
         PipelineSet {
-            models: self.models.iter().map(|(m, _)| *m).collect(),
+            models,
             unlit: self.unlit.is_some(),
         }
     }
@@ -100,11 +191,15 @@ fn targets(format: wgpu::TextureFormat, split: bool) -> Vec<Option<wgpu::ColorTa
 }
 
 impl Pipelines {
+    /// The pipelines of `set`: every one now, or with `first` (a model of the set) only that
+    /// model's character pipeline now and the others' on a background thread
+    /// ([`CharacterPipelines::receive`] installs them).
     pub fn new(
         device: &wgpu::Device,
         layouts: &Layouts,
         format: wgpu::TextureFormat,
         set: &PipelineSet,
+        first: Option<ShadingModel>,
     ) -> Self {
         let character_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("character"),
@@ -121,27 +216,27 @@ impl Pipelines {
             immediate_size: 0,
         });
         let character = |label: &str, source: String, split: bool| {
-            let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                label: Some(label),
-                source: wgpu::ShaderSource::Wgsl(source.into()),
-            });
-            pipeline(
-                device,
-                &character_layout,
-                &module,
-                &targets(format, split),
-                &[vertex_layout()],
-                label,
-            )
+            character_pipeline(device, &character_layout, format, label, source, split)
         };
-        let models = set
+        let now: Vec<ShadingModel> = match first.filter(|m| set.models.contains(m)) {
+            Some(m) => vec![m],
+            None => set.models.clone(),
+        };
+        let models = now
+            .iter()
+            .map(|&m| (m, model_pipeline(device, &character_layout, format, m)))
+            .collect();
+        let pending: Vec<ShadingModel> = set
             .models
             .iter()
-            .map(|&m| {
-                let split = m.effects().screen_space;
-                (m, character(m.name(), build_shader_source(m), split))
-            })
+            .copied()
+            .filter(|m| !now.contains(m))
             .collect();
+        let builder = (!pending.is_empty()).then(|| Builder {
+            device: device.clone(),
+            layout: character_layout.clone(),
+            format,
+        });
         let unlit = set.unlit.then(|| {
             let src = compose(
                 "character",
@@ -169,11 +264,58 @@ impl Pipelines {
             .needs_subsurface_pass()
             .then(|| prop(&ShaderDefs::new().flag("SCREEN_SPACE"), true));
         Self {
-            character: CharacterPipelines { models, unlit },
+            character: CharacterPipelines {
+                models,
+                unlit,
+                pending,
+                builder,
+                arrivals: None,
+            },
             prop: prop(&ShaderDefs::new(), false),
             prop_split,
         }
     }
+}
+
+/// The character pipeline of `model`.
+fn model_pipeline(
+    device: &wgpu::Device,
+    layout: &wgpu::PipelineLayout,
+    format: wgpu::TextureFormat,
+    model: ShadingModel,
+) -> wgpu::RenderPipeline {
+    let split = model.effects().screen_space;
+    character_pipeline(
+        device,
+        layout,
+        format,
+        model.name(),
+        build_shader_source(model),
+        split,
+    )
+}
+
+/// A character pipeline from composed WGSL.
+fn character_pipeline(
+    device: &wgpu::Device,
+    layout: &wgpu::PipelineLayout,
+    format: wgpu::TextureFormat,
+    label: &str,
+    source: String,
+    split: bool,
+) -> wgpu::RenderPipeline {
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some(label),
+        source: wgpu::ShaderSource::Wgsl(source.into()),
+    });
+    pipeline(
+        device,
+        layout,
+        &module,
+        &targets(format, split),
+        &[vertex_layout()],
+        label,
+    )
 }
 
 fn pipeline(

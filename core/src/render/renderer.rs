@@ -87,9 +87,48 @@ impl Renderer {
 
     /// A renderer that builds only the character pipelines in `set`.
     pub fn with_pipelines(gpu: &Gpu, format: wgpu::TextureFormat, set: &PipelineSet) -> Self {
+        Self::build(gpu, format, set, None)
+    }
+
+    /// The same, building only `first`'s character pipeline now and the set's others on a
+    /// background thread once [`Self::start_pipeline_builder`] is called (after the first
+    /// frame: a quick first frame; see [`Self::receive_pipelines`]).
+    pub fn with_first_pipeline(
+        gpu: &Gpu,
+        format: wgpu::TextureFormat,
+        set: &PipelineSet,
+        first: ShadingModel,
+    ) -> Self {
+        Self::build(gpu, format, set, Some(first))
+    }
+
+    /// Installs the character pipelines built in the background so far; blocks for `need`'s
+    /// (the model about to be drawn) or, with `all`, for every one (before play, where
+    /// nothing may be created).
+    pub fn receive_pipelines(&mut self, need: Option<ShadingModel>, all: bool) {
+        self.pipelines.character.receive(need, all);
+    }
+
+    /// Starts building the other character pipelines in the background (after the first
+    /// frame; a frame that needs one starts it too).
+    pub fn start_pipeline_builder(&mut self) {
+        self.pipelines.character.start_builder();
+    }
+
+    /// Whether some character pipeline is still being built in the background.
+    pub fn pipelines_loading(&self) -> bool {
+        self.pipelines.character.loading()
+    }
+
+    fn build(
+        gpu: &Gpu,
+        format: wgpu::TextureFormat,
+        set: &PipelineSet,
+        first: Option<ShadingModel>,
+    ) -> Self {
         let device = &gpu.device;
         let layouts = Layouts::new(device);
-        let pipelines = Pipelines::new(device, &layouts, format, set);
+        let pipelines = Pipelines::new(device, &layouts, format, set, first);
         let sss = set
             .needs_subsurface_pass()
             .then(|| SssPass::new(device, &layouts, format, &set.models));
@@ -383,7 +422,7 @@ impl Renderer {
         queue.write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(&u));
     }
 
-    /// The character pipelines that were built.
+    /// The character pipelines that were built (or are being built).
     pub fn built_pipelines(&self) -> PipelineSet {
         self.pipelines.character.built()
     }

@@ -10,7 +10,7 @@ use std::sync::Mutex;
 use super::layouts::Layouts;
 use super::targets::{depth_state, multisample, MSAA_SAMPLES};
 use crate::shader::{compose, ShaderDefs};
-use crate::shading::subsurface::{ANGLES, KERNEL_ROWS};
+use crate::shading::subsurface::{KernelUniform, ANGLES};
 use crate::shading::{Material, ShadingModel};
 
 /// Format of both intermediate targets (linear radiance; irradiance and pixel size in mm).
@@ -129,7 +129,7 @@ impl SssPass {
             .map(|&m| {
                 let buffer = device.create_buffer(&wgpu::BufferDescriptor {
                     label: Some(m.name()),
-                    size: (KERNEL_ROWS * 16) as u64,
+                    size: std::mem::size_of::<KernelUniform>() as u64,
                     usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
                     mapped_at_creation: false,
                 });
@@ -162,8 +162,8 @@ impl SssPass {
         ];
         for (model, buffer) in &self.kernels {
             if let Some(kernel) = model.kernel(material) {
-                let rows = kernel.pack(ANGLES, bg);
-                queue.write_buffer(buffer, 0, bytemuck::cast_slice(&rows));
+                let uniform = kernel.pack(ANGLES, bg);
+                queue.write_buffer(buffer, 0, bytemuck::bytes_of(&uniform));
             }
         }
     }

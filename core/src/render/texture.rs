@@ -123,13 +123,18 @@ pub fn mip_count(width: u32, height: u32) -> u32 {
 fn downsample(src: &[u8], w: u32, h: u32, srgb: bool) -> Vec<u8> {
     let (nw, nh) = ((w / 2).max(1), (h / 2).max(1));
     let mut out = vec![0u8; (nw * nh * 4) as usize];
+    // Each byte's value, decoded once (the same numbers as decoding every texel).
+    static DECODE: std::sync::OnceLock<[[f32; 256]; 2]> = std::sync::OnceLock::new();
+    let decode = DECODE.get_or_init(|| {
+        let unit = |b: usize| b as f32 / 255.0;
+        [
+            std::array::from_fn(unit),
+            std::array::from_fn(|b| srgb_to_linear(unit(b))),
+        ]
+    });
     let texel = |x: u32, y: u32, c: usize| -> f32 {
-        let v = src[((y.min(h - 1) * w + x.min(w - 1)) * 4) as usize + c] as f32 / 255.0;
-        if srgb && c < 3 {
-            srgb_to_linear(v)
-        } else {
-            v
-        }
+        let b = src[((y.min(h - 1) * w + x.min(w - 1)) * 4) as usize + c] as usize;
+        decode[usize::from(srgb && c < 3)][b]
     };
     for y in 0..nh {
         for x in 0..nw {

@@ -70,7 +70,7 @@ impl std::error::Error for ComposeError {}
 
 /// Composes module `entry` with its imports into one WGSL source.
 pub fn compose(entry: &str, defs: &ShaderDefs) -> Result<String, ComposeError> {
-    compose_from(super::MODULES, entry, defs)
+    compose_from(super::modules(), entry, defs)
 }
 
 /// Composes from an explicit module set (e.g. to prove a shader builds without some modules).

@@ -1,7 +1,8 @@
 //! WGSL composition: the project's one mechanism for sharing shader code.
 //!
 //! WGSL has no `#include`, so dermis runs a small line-based preprocessor over the files in
-//! `shaders/` (embedded at compile time, so no file is read at run time):
+//! `shaders/` (embedded at compile time, so no file is read at run time; the shared modules
+//! are listed in `sources.rs`, each shading model's comes with its descriptor):
 //!
 //! * `#import name` inlines module `name` (`shaders/name.wgsl`) once per composed shader;
 //!   a name can be an *alias* bound by the caller (the character shader imports
@@ -16,4 +17,4 @@ mod compose;
 mod sources;
 
 pub use compose::{compose, compose_from, ComposeError, ShaderDefs};
-pub use sources::{module_source, MODULES};
+pub use sources::{module_source, modules, SHARED};

@@ -1,7 +1,13 @@
-//! The WGSL modules, embedded from `shaders/` at compile time.
+//! The WGSL modules, embedded from `shaders/` at compile time: the shared ones listed here,
+//! and each shading model's own, which its descriptor carries (`shading/<model>.rs`).
 
-/// `(name, source)` of every module the composer can import.
-pub const MODULES: &[(&str, &str)] = &[
+use std::sync::OnceLock;
+
+use super::ShaderDefs;
+use crate::shading::ShadingModel;
+
+/// `(name, source)` of every shared module (not a shading model's).
+pub const SHARED: &[(&str, &str)] = &[
     ("common", include_str!("../../../shaders/common.wgsl")),
     ("skinning", include_str!("../../../shaders/skinning.wgsl")),
     ("real", include_str!("../../../shaders/real.wgsl")),
@@ -10,18 +16,9 @@ pub const MODULES: &[(&str, &str)] = &[
     ("oss_nd", include_str!("../../../shaders/oss_nd.wgsl")),
     ("fresnel", include_str!("../../../shaders/fresnel.wgsl")),
     ("ward_lobe", include_str!("../../../shaders/ward_lobe.wgsl")),
-    ("ward", include_str!("../../../shaders/ward.wgsl")),
-    ("dipole", include_str!("../../../shaders/dipole.wgsl")),
-    ("oss", include_str!("../../../shaders/oss.wgsl")),
     (
         "subsurface",
         include_str!("../../../shaders/subsurface.wgsl"),
-    ),
-    ("burley", include_str!("../../../shaders/burley.wgsl")),
-    ("tabulated", include_str!("../../../shaders/tabulated.wgsl")),
-    (
-        "preintegrated",
-        include_str!("../../../shaders/preintegrated.wgsl"),
     ),
     ("sss_pass", include_str!("../../../shaders/sss_pass.wgsl")),
     ("unlit", include_str!("../../../shaders/unlit.wgsl")),
@@ -36,7 +33,46 @@ pub const MODULES: &[(&str, &str)] = &[
     ),
 ];
 
+/// `(name, source)` of every module the composer can import: [`SHARED`], then each
+/// registered model's module (once, for models that share a file).
+pub fn modules() -> &'static [(&'static str, &'static str)] {
+    static ALL: OnceLock<Vec<(&str, &str)>> = OnceLock::new();
+    ALL.get_or_init(|| {
+        let mut all = SHARED.to_vec();
+        for m in ShadingModel::ALL {
+            let d = m.descriptor();
+            if !all.iter().any(|(n, _)| *n == d.module) {
+                all.push((d.module, d.wgsl));
+            }
+        }
+        all
+    })
+}
+
 /// The source of module `name`, if it exists.
 pub fn module_source(name: &str) -> Option<&'static str> {
-    MODULES.iter().find(|(n, _)| *n == name).map(|(_, s)| *s)
+    modules().iter().find(|(n, _)| *n == name).map(|(_, s)| *s)
+}
+
+impl ShadingModel {
+    /// Composition flags selecting the model's shader: `shading_model` bound to its module,
+    /// its variant flag, else the flags its effects imply.
+    pub fn defs(self) -> ShaderDefs {
+        let d = self.descriptor();
+        let defs = ShaderDefs::new().alias("shading_model", d.module);
+        if let Some(flag) = d.variant {
+            return defs.flag(flag);
+        }
+        let e = d.effects;
+        let defs = if e.screen_space {
+            defs.flag("SCREEN_SPACE")
+        } else {
+            defs
+        };
+        if e.subsurface && e.translucency {
+            defs.flag("TRANSLUCENCY")
+        } else {
+            defs
+        }
+    }
 }

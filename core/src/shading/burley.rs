@@ -13,8 +13,8 @@
 //! (q(μ) = F_t(μ)/F_t(1)), no translucency table: an analytic model with no Monte Carlo input.
 
 use super::bake::{self, OBLIQUE_NODES};
-use super::subsurface::{Kernel, Params};
-use super::{fresnel, transport, Material};
+use super::subsurface::{self, Kernel, Params};
+use super::{fresnel, transport, Descriptor, Effects, Material};
 
 /// Smallest r [mm] the profile is evaluated at (R ∝ 1/r).
 pub const R_MIN_MM: f64 = 1e-4;
@@ -95,6 +95,26 @@ pub fn kernel(m: &Material) -> Kernel {
         .collect();
     Kernel::from_rings(&edges, &mass)
 }
+
+/// `burley`.
+pub const BURLEY: Descriptor = Descriptor {
+    name: "burley",
+    label: "Burley diffusion",
+    module: "burley",
+    wgsl: include_str!("../../../shaders/burley.wgsl"),
+    variant: None,
+    effects: Effects {
+        subsurface: true,
+        screen_space: true,
+        ..Effects::NONE
+    },
+    params: |m| params(m).pack(),
+    params_from: None,
+    kernel: Some(kernel),
+    lut: None,
+    total_reflectance: |m, _| surface_albedo(m),
+    ..subsurface::SPATIAL
+};
 
 #[cfg(test)]
 mod tests {

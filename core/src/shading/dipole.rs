@@ -10,8 +10,8 @@
 //! the `dipole-printed` variant.
 
 use super::pixel::Pixel;
-use super::uniform::{f32x3, model_uniform, rgb, ModelParams};
-use super::{fresnel, units, Material};
+use super::uniform::{f32x3, model_uniform, rgb, ModelParams, Uniform};
+use super::{fresnel, units, Descriptor, Effects, Material};
 use glam::DVec3;
 
 model_uniform! {
@@ -187,6 +187,39 @@ pub fn total_reflectance(m: &Material) -> [f64; 3] {
         0.5 * albedo[c] * (1.0 + (-(4.0 / 3.0) * a * s).exp()) * (-s).exp()
     })
 }
+
+/// `dipole`: the standard form.
+pub const DIPOLE: Descriptor = Descriptor {
+    name: "dipole",
+    label: "Scaled BSSRDF",
+    module: "dipole",
+    wgsl: include_str!("../../../shaders/dipole.wgsl"),
+    variant: None,
+    effects: Effects {
+        subsurface: true,
+        ..Effects::NONE
+    },
+    uniform: DipoleUniform::LAYOUT,
+    params: |m| Params::new(m).pack(),
+    params_from: None,
+    kernel: None,
+    lut: None,
+    shade: |p, px| shade(p, false, px),
+    probe: |p, _, x| profile_packed(p, false, x),
+    probe_wgsl: "dipole_profile(x)",
+    total_reflectance: |m, _| total_reflectance(m),
+};
+
+/// `dipole-printed`: eq. 3 as printed.
+pub const DIPOLE_PRINTED: Descriptor = Descriptor {
+    name: "dipole-printed",
+    label: "Scaled BSSRDF (as printed)",
+    variant: Some("DIPOLE_PRINTED"),
+    shade: |p, px| shade(p, true, px),
+    probe: |p, _, x| profile_packed(p, true, x),
+    total_reflectance: |m, _| super::prediction::dipole_printed(m),
+    ..DIPOLE
+};
 
 #[cfg(test)]
 mod tests {

@@ -23,8 +23,8 @@
 //! So 0 ≤ f_d ≤ (1 − F_dr)(1 + F_dr) < 1.
 
 use super::pixel::Pixel;
-use super::uniform::{f32x3, model_uniform, rgb, ModelParams};
-use super::{fresnel, units, ward, Material};
+use super::uniform::{f32x3, model_uniform, rgb, ModelParams, Uniform};
+use super::{fresnel, units, ward, Descriptor, Effects, Material};
 use glam::DVec3;
 
 model_uniform! {
@@ -219,6 +219,42 @@ impl Params {
         ModelParams::from_uniform(&self.uniform())
     }
 }
+
+/// `oss`: eq. 5–6 as printed.
+pub const OSS: Descriptor = Descriptor {
+    name: "oss",
+    label: "OSS",
+    module: "oss",
+    wgsl: include_str!("../../../shaders/oss.wgsl"),
+    variant: None,
+    effects: Effects {
+        subsurface: true,
+        translucency: true,
+        specular: true,
+        texture: true,
+        ..Effects::NONE
+    },
+    uniform: OssUniform::LAYOUT,
+    params: |m| Params::new(m).pack(),
+    params_from: None,
+    kernel: None,
+    lut: None,
+    shade: |p, px| shade(p, false, px),
+    probe: |p, _, x| colour_packed(p, false, x),
+    probe_wgsl: "oss_colour(x)",
+    total_reflectance: |m, slab| super::prediction::oss(m, slab, false),
+};
+
+/// `oss-stable`: eq. 5's terms positive and bounded.
+pub const OSS_STABLE: Descriptor = Descriptor {
+    name: "oss-stable",
+    label: "OSS (stable)",
+    variant: Some("OSS_STABLE"),
+    shade: |p, px| shade(p, true, px),
+    probe: |p, _, x| colour_packed(p, true, x),
+    total_reflectance: |m, slab| super::prediction::oss(m, slab, true),
+    ..OSS
+};
 
 #[cfg(test)]
 mod tests {

@@ -20,8 +20,8 @@
 use std::sync::{Arc, Mutex, OnceLock};
 
 use super::bake::{self, Bake, Budget};
-use super::subsurface::{Params, LUT_R0_MM};
-use super::Material;
+use super::subsurface::{self, Params, LUT_R0_MM};
+use super::{Descriptor, Effects, Material};
 
 /// LUT size: n·l × curvature …
 pub const LUT_U: usize = 64;
@@ -47,6 +47,10 @@ pub struct Lut {
 }
 
 impl Lut {
+    /// The texture's size in texels (width, height): the sphere rows, the factor rows and
+    /// the penumbra row.
+    pub const SIZE: (u32, u32) = (LUT_U as u32, TEXTURE_ROWS as u32);
+
     /// The value at texel (i, j) for channel c.
     pub fn at(&self, i: usize, j: usize, c: usize) -> f32 {
         self.texels[j * LUT_U + i][c]
@@ -203,3 +207,25 @@ pub fn params_from(b: &Bake, m: &Material) -> Params {
         lift: lift(b),
     }
 }
+
+/// `preintegrated`.
+pub const PREINTEGRATED: Descriptor = Descriptor {
+    name: "preintegrated",
+    label: "Pre-integrated",
+    module: "preintegrated",
+    wgsl: include_str!("../../../shaders/preintegrated.wgsl"),
+    variant: None,
+    effects: Effects {
+        subsurface: true,
+        translucency: true,
+        lut: true,
+        penumbra: true,
+        ..Effects::NONE
+    },
+    params: |m| params(m).pack(),
+    params_from: Some(|b, m| params_from(b, m).pack()),
+    kernel: None,
+    lut: Some(lut),
+    total_reflectance: |m, _| super::prediction::measured(m),
+    ..subsurface::SPATIAL
+};

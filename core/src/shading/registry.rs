@@ -1,4 +1,8 @@
-//! The one registry of shading-model names.
+//! The one registry of shading models: [`models!`] turns the rows of `shading/mod.rs` into
+//! the [`ShadingModel`] enum, its [`ShadingModel::ALL`] order and the table of each model's
+//! [`Descriptor`], which the model declares in its own Rust file. Everything else — the CLI,
+//! the menu, the governor, the composer's modules, the renderer's per-model GPU records, the
+//! conformance harness, the benches and the tests' lists — reads it from here.
 
 use std::sync::Arc;
 
@@ -6,36 +10,44 @@ use glam::DVec3;
 
 use super::bake::Bake;
 use super::pixel::Pixel;
-use super::preintegrated::{self, Lut};
-use super::subsurface::{self, Kernel};
-use super::uniform::{Layout, ModelParams, Uniform};
-use super::{burley, dipole, oss, prediction, tabulated, ward, Material};
-use crate::shader::ShaderDefs;
+use super::subsurface::Kernel;
+use super::uniform::{Layout, ModelParams};
+use super::{Lut, Material, ShadingModel};
 
-/// A selectable character shading model (and the paper's printed variants).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub enum ShadingModel {
-    /// Ward anisotropic BRDF, standard half-vector form (Walter 2005).
-    Ward,
-    /// Ward as printed in eq. 1 (φ_i / φ_o in the exponent).
-    WardPrinted,
-    /// The paper's scaled Jensen dipole BSSRDF, standard form.
-    Dipole,
-    /// The dipole as printed in eq. 3 (extra 1/σ'_t on the virtual source).
-    DipolePrinted,
-    /// The authors' OSS colour model (eq. 5–6), as printed.
-    Oss,
-    /// OSS with eq. 5's terms replaced by positive, bounded, dimensionally consistent forms.
-    OssStable,
-    /// Christensen–Burley normalised diffusion (transport-solved albedo, diffuse mean free
-    /// path), spread in screen space.
-    Burley,
-    /// The Monte Carlo-measured diffusion profile with oblique incidence and translucency,
-    /// spread in screen space.
-    Tabulated,
-    /// Pre-integrated skin: a LUT over (n·l, curvature) from the measured profile, one pass.
-    Preintegrated,
+/// Declares the models: `default: Variant; baseline: Variant;` then one row per model,
+/// `Variant => module::DESCRIPTOR,` (doc comments allowed), in menu order. Generates the
+/// [`ShadingModel`] enum, `ShadingModel::{DEFAULT, BASELINE, ALL}` and the descriptor table.
+macro_rules! models {
+    (
+        default: $default:ident;
+        baseline: $baseline:ident;
+        $( $(#[$doc:meta])* $variant:ident => $module:ident :: $row:ident, )+
+    ) => {
+        /// A selectable character shading model (and the paper's printed variants): one row of
+        /// `shading/mod.rs`, its [`Descriptor`] declared in its own Rust file.
+        #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+        pub enum ShadingModel {
+            $( $(#[$doc])* $variant, )+
+        }
+
+        impl ShadingModel {
+            /// The one default, wherever no model is chosen (the game's first run and an
+            /// unreadable saved choice, `render`, `demo`, `soak`, the benches, the phone).
+            pub const DEFAULT: ShadingModel = ShadingModel::$default;
+
+            /// What costs and errors are compared against (benches' ratios, "× baseline").
+            pub const BASELINE: ShadingModel = ShadingModel::$baseline;
+
+            /// Every model, in menu order.
+            pub const ALL: [ShadingModel; [$(ShadingModel::$variant),+].len()] =
+                [$(ShadingModel::$variant),+];
+        }
+
+        /// One descriptor per model, in [`ShadingModel::ALL`] order.
+        static TABLE: [&registry::Descriptor; ShadingModel::ALL.len()] = [$(&$module::$row),+];
+    };
 }
+pub(super) use models;
 
 /// The effects a material shaded by a model calls for — what its shader computes. The
 /// renderer composes a pipeline only for models a scene can reach, so an effect no material
@@ -61,17 +73,31 @@ pub struct Effects {
     pub penumbra: bool,
 }
 
-/// Everything the engine knows about one model: one row of [`TABLE`]. Adding a model is a
-/// Rust file in `shading/` (its parameters, precompute and f64 reference), a WGSL file of the
-/// same name in `shaders/`, a variant of [`ShadingModel`] and a row here.
+impl Effects {
+    /// No effect: the start of every model's `Effects { .., ..Effects::NONE }`.
+    pub const NONE: Effects = Effects {
+        subsurface: false,
+        translucency: false,
+        specular: false,
+        texture: false,
+        screen_space: false,
+        lut: false,
+        penumbra: false,
+    };
+}
+
+/// Everything the engine knows about one model, declared as a `const` in the model's own
+/// Rust file next to what it points at, and listed by one row of `shading/mod.rs`.
 pub struct Descriptor {
-    pub model: ShadingModel,
     /// The registry name (CLI, UI, JSON).
     pub name: &'static str,
     /// A short human label.
     pub label: &'static str,
     /// The WGSL module (file in `shaders/`, and Rust file in `shading/`) implementing it.
     pub module: &'static str,
+    /// That module's source (`include_str!` of `shaders/<module>.wgsl`): the composer's
+    /// modules are the shared ones plus every model's.
+    pub wgsl: &'static str,
     /// The composition flag selecting this variant inside the module, if any.
     pub variant: Option<&'static str>,
     /// What its shader computes.
@@ -91,241 +117,21 @@ pub struct Descriptor {
     pub lut: Option<fn(&Material) -> Arc<Lut>>,
     /// f64 reference of the shader's `shade` (LUT models: the flat-ground limit without it).
     pub shade: fn(&ModelParams, &Pixel) -> DVec3,
-    /// f64 reference of the probed sub-function at x (see `dermis_measure::conformance::reference_probe`).
+    /// f64 reference of the probed sub-function at x (see
+    /// `dermis_measure::conformance::reference_probe`).
     pub probe: fn(&ModelParams, &Pixel, f64) -> DVec3,
+    /// The same sub-function in the model's WGSL: an expression of `s: Surface` and `x: f32`
+    /// giving a `vec3<f32>` (the conformance harness compiles it beside `shade`).
+    pub probe_wgsl: &'static str,
     /// Its prediction of the total diffuse reflectance, semi-infinite (None) or of a slab
     /// (mm) — `dermis sss`.
     pub total_reflectance: fn(&Material, Option<f64>) -> [f64; 3],
 }
 
-const NONE: Effects = Effects {
-    subsurface: false,
-    translucency: false,
-    specular: false,
-    texture: false,
-    screen_space: false,
-    lut: false,
-    penumbra: false,
-};
-const WARD: Effects = Effects {
-    specular: true,
-    texture: true,
-    ..NONE
-};
-const DIPOLE: Effects = Effects {
-    subsurface: true,
-    ..NONE
-};
-const OSS: Effects = Effects {
-    subsurface: true,
-    translucency: true,
-    specular: true,
-    texture: true,
-    ..NONE
-};
-
-fn dipole_semi(m: &Material, _: Option<f64>) -> [f64; 3] {
-    dipole::total_reflectance(m)
-}
-
-fn measured(m: &Material, _: Option<f64>) -> [f64; 3] {
-    prediction::measured(m)
-}
-
-/// The spatial models' per-pixel part and its probed oblique table.
-fn spatial_probe(p: &ModelParams, _: &Pixel, x: f64) -> DVec3 {
-    subsurface::oblique_packed(p, x / (1.0 + x))
-}
-
-/// One row per model, in [`ShadingModel::ALL`] order.
-pub static TABLE: [Descriptor; 9] = [
-    Descriptor {
-        model: ShadingModel::Ward,
-        name: "ward",
-        label: "Ward BRDF",
-        module: "ward",
-        variant: None,
-        effects: WARD,
-        uniform: ward::WardUniform::LAYOUT,
-        params: |m| ward::Params::new(m, &ward::Lobe::SKIN).pack(),
-        params_from: None,
-        kernel: None,
-        lut: None,
-        shade: |p, px| ward::shade(p, false, px),
-        probe: |p, px, _| ward::probe(p, false, px),
-        total_reflectance: dipole_semi,
-    },
-    Descriptor {
-        model: ShadingModel::WardPrinted,
-        name: "ward-printed",
-        label: "Ward BRDF (as printed)",
-        module: "ward",
-        variant: Some("WARD_PRINTED"),
-        effects: WARD,
-        uniform: ward::WardUniform::LAYOUT,
-        params: |m| ward::Params::new(m, &ward::Lobe::SKIN).pack(),
-        params_from: None,
-        kernel: None,
-        lut: None,
-        shade: |p, px| ward::shade(p, true, px),
-        probe: |p, px, _| ward::probe(p, true, px),
-        total_reflectance: dipole_semi,
-    },
-    Descriptor {
-        model: ShadingModel::Dipole,
-        name: "dipole",
-        label: "Scaled BSSRDF",
-        module: "dipole",
-        variant: None,
-        effects: DIPOLE,
-        uniform: dipole::DipoleUniform::LAYOUT,
-        params: |m| dipole::Params::new(m).pack(),
-        params_from: None,
-        kernel: None,
-        lut: None,
-        shade: |p, px| dipole::shade(p, false, px),
-        probe: |p, _, x| dipole::profile_packed(p, false, x),
-        total_reflectance: dipole_semi,
-    },
-    Descriptor {
-        model: ShadingModel::DipolePrinted,
-        name: "dipole-printed",
-        label: "Scaled BSSRDF (as printed)",
-        module: "dipole",
-        variant: Some("DIPOLE_PRINTED"),
-        effects: DIPOLE,
-        uniform: dipole::DipoleUniform::LAYOUT,
-        params: |m| dipole::Params::new(m).pack(),
-        params_from: None,
-        kernel: None,
-        lut: None,
-        shade: |p, px| dipole::shade(p, true, px),
-        probe: |p, _, x| dipole::profile_packed(p, true, x),
-        total_reflectance: |m, _| prediction::dipole_printed(m),
-    },
-    Descriptor {
-        model: ShadingModel::Oss,
-        name: "oss",
-        label: "OSS",
-        module: "oss",
-        variant: None,
-        effects: OSS,
-        uniform: oss::OssUniform::LAYOUT,
-        params: |m| oss::Params::new(m).pack(),
-        params_from: None,
-        kernel: None,
-        lut: None,
-        shade: |p, px| oss::shade(p, false, px),
-        probe: |p, _, x| oss::colour_packed(p, false, x),
-        total_reflectance: |m, slab| prediction::oss(m, slab, false),
-    },
-    Descriptor {
-        model: ShadingModel::OssStable,
-        name: "oss-stable",
-        label: "OSS (stable)",
-        module: "oss",
-        variant: Some("OSS_STABLE"),
-        effects: OSS,
-        uniform: oss::OssUniform::LAYOUT,
-        params: |m| oss::Params::new(m).pack(),
-        params_from: None,
-        kernel: None,
-        lut: None,
-        shade: |p, px| oss::shade(p, true, px),
-        probe: |p, _, x| oss::colour_packed(p, true, x),
-        total_reflectance: |m, slab| prediction::oss(m, slab, true),
-    },
-    Descriptor {
-        model: ShadingModel::Burley,
-        name: "burley",
-        label: "Burley diffusion",
-        module: "burley",
-        variant: None,
-        effects: Effects {
-            subsurface: true,
-            screen_space: true,
-            ..NONE
-        },
-        uniform: subsurface::SubsurfaceUniform::LAYOUT,
-        params: |m| burley::params(m).pack(),
-        params_from: None,
-        kernel: Some(burley::kernel),
-        lut: None,
-        shade: subsurface::local,
-        probe: spatial_probe,
-        total_reflectance: |m, _| burley::surface_albedo(m),
-    },
-    Descriptor {
-        model: ShadingModel::Tabulated,
-        name: "tabulated",
-        label: "Measured profile",
-        module: "tabulated",
-        variant: None,
-        effects: Effects {
-            subsurface: true,
-            translucency: true,
-            screen_space: true,
-            ..NONE
-        },
-        uniform: subsurface::SubsurfaceUniform::LAYOUT,
-        params: |m| tabulated::params(m).pack(),
-        params_from: Some(|b, m| tabulated::params_from(b, m).pack()),
-        kernel: Some(tabulated::kernel),
-        lut: None,
-        shade: subsurface::local,
-        probe: spatial_probe,
-        total_reflectance: measured,
-    },
-    Descriptor {
-        model: ShadingModel::Preintegrated,
-        name: "preintegrated",
-        label: "Pre-integrated",
-        module: "preintegrated",
-        variant: None,
-        effects: Effects {
-            subsurface: true,
-            translucency: true,
-            lut: true,
-            penumbra: true,
-            ..NONE
-        },
-        uniform: subsurface::SubsurfaceUniform::LAYOUT,
-        params: |m| preintegrated::params(m).pack(),
-        params_from: Some(|b, m| preintegrated::params_from(b, m).pack()),
-        kernel: None,
-        lut: Some(preintegrated::lut),
-        shade: subsurface::local,
-        probe: spatial_probe,
-        total_reflectance: measured,
-    },
-];
-
 impl ShadingModel {
-    /// The one default, wherever no model is chosen (the game's first run and an unreadable
-    /// saved choice, `render`, `demo`, `soak`, the benches, the phone): the mobile tier, the
-    /// most accurate model without a screen-space pass (one LUT fetch per pixel).
-    pub const DEFAULT: ShadingModel = ShadingModel::Preintegrated;
-
-    /// Every model, in menu order.
-    pub const ALL: [ShadingModel; 9] = [
-        ShadingModel::Ward,
-        ShadingModel::WardPrinted,
-        ShadingModel::Dipole,
-        ShadingModel::DipolePrinted,
-        ShadingModel::Oss,
-        ShadingModel::OssStable,
-        ShadingModel::Burley,
-        ShadingModel::Tabulated,
-        ShadingModel::Preintegrated,
-    ];
-
-    /// The paper's three, as the game's menu offers them by default.
-    pub const PAPER: [ShadingModel; 3] =
-        [ShadingModel::Ward, ShadingModel::Dipole, ShadingModel::Oss];
-
-    /// This model's row of [`TABLE`].
+    /// This model's descriptor.
     pub fn descriptor(self) -> &'static Descriptor {
-        &TABLE[self as usize]
+        super::TABLE[self as usize]
     }
 
     /// The registry name (CLI, UI, JSON).
@@ -355,27 +161,6 @@ impl ShadingModel {
     /// The WGSL module (file in `shaders/`) implementing the model.
     pub fn module(self) -> &'static str {
         self.descriptor().module
-    }
-
-    /// Composition flags selecting the variant inside the model's file: its own variant
-    /// flag, else the flags its effects imply.
-    pub fn defs(self) -> ShaderDefs {
-        let d = self.descriptor();
-        let defs = ShaderDefs::new().alias("shading_model", d.module);
-        if let Some(flag) = d.variant {
-            return defs.flag(flag);
-        }
-        let e = d.effects;
-        let defs = if e.screen_space {
-            defs.flag("SCREEN_SPACE")
-        } else {
-            defs
-        };
-        if e.subsurface && e.translucency {
-            defs.flag("TRANSLUCENCY")
-        } else {
-            defs
-        }
     }
 
     /// The next model in menu order (wrapping).
@@ -432,9 +217,8 @@ mod tests {
     fn every_table_row_is_complete_and_in_order() {
         let root = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
         let mut names = std::collections::HashSet::new();
-        for (i, m) in ShadingModel::ALL.iter().enumerate() {
+        for m in ShadingModel::ALL.iter() {
             let d = m.descriptor();
-            assert_eq!(d.model, *m, "row {i} is out of order");
             assert!(names.insert(d.name), "{} twice", d.name);
             assert_eq!(ShadingModel::from_name(d.name), Some(*m));
             assert!(!d.label.is_empty());

@@ -12,16 +12,14 @@ use glam::DVec3;
 
 use super::bake::{OBLIQUE_NODES, SLAB_FIRST_MM, SLAB_NODES};
 use super::pixel::Pixel;
-use super::uniform::{f32x3, model_uniform, rgb, ModelParams};
-use super::{fresnel, units};
+use super::uniform::{f32x3, gpu_struct, model_uniform, rgb, ModelParams, Uniform};
+use super::{fresnel, units, Descriptor, Effects};
 
 /// Rings the screen-space pass can take (`MAX_RINGS` in `sss_pass.wgsl`).
 pub const MAX_RINGS: usize = 24;
 /// Transmittances below this are packed as this (ln T stays finite: −69).
 const SLAB_FLOOR: f64 = 1e-30;
 
-/// Rows (vec4) of the packed kernel uniform.
-pub const KERNEL_ROWS: usize = 3 + MAX_RINGS;
 /// Sample directions per ring (the pass's default quality).
 pub const ANGLES: u32 = 8;
 /// Relative pixel-size difference beyond which a neighbour is another surface.
@@ -76,17 +74,35 @@ impl Kernel {
         std::array::from_fn(|c| self.centre[c] + self.rings.iter().map(|r| r.0[c]).sum::<f64>())
     }
 
-    /// The uniform `Kernel` of `sss_pass.wgsl`: counts, the background colour, the centre,
-    /// then (mass, radius) per ring.
-    pub fn pack(&self, angles: u32, background: [f32; 4]) -> Vec<[f32; 4]> {
-        let mut out = Vec::with_capacity(KERNEL_ROWS);
-        out.push([self.rings.len() as f32, angles as f32, DEPTH_TOLERANCE, 0.0]);
-        out.push(background);
+    /// The uniform of `sss_pass.wgsl`: counts, the background colour, the centre, then
+    /// (mass, radius) per ring.
+    pub fn pack(&self, angles: u32, background: [f32; 4]) -> KernelUniform {
         let f = |m: [f64; 3], w: f64| [m[0] as f32, m[1] as f32, m[2] as f32, w as f32];
-        out.push(f(self.centre, self.centre_radius));
-        out.extend(self.rings.iter().map(|(m, r)| f(*m, *r)));
-        out.resize(KERNEL_ROWS, [0.0; 4]);
-        out
+        let mut rings = [[0.0; 4]; MAX_RINGS];
+        for (slot, (m, r)) in rings.iter_mut().zip(&self.rings) {
+            *slot = f(*m, *r);
+        }
+        KernelUniform {
+            counts: [self.rings.len() as f32, angles as f32, DEPTH_TOLERANCE, 0.0],
+            background,
+            centre: f(self.centre, self.centre_radius),
+            rings,
+        }
+    }
+}
+
+gpu_struct! {
+    /// What `sss_pass.wgsl` reads at `@group(1) @binding(0)` (its `KernelUniform`, member for
+    /// member).
+    pub struct KernelUniform {
+        /// x: rings used, y: angles per ring, z: depth tolerance (relative pixel size).
+        pub counts: [f32; 4],
+        /// The clear colour as displayed (where nothing was drawn).
+        pub background: [f32; 4],
+        /// rgb: mass of the inner disk; w: its radius (mm).
+        pub centre: [f32; 4],
+        /// rgb: mass of ring k; w: its outer radius (mm).
+        pub rings: [[f32; 4]; MAX_RINGS],
     }
 }
 
@@ -286,6 +302,26 @@ pub fn local(pm: &ModelParams, px: &Pixel) -> DVec3 {
     local + exit * p.albedo * spread
 }
 
+/// What the spatial models' descriptors share (their uniform, the per-pixel part and its
+/// probed oblique table); each fills in the rest (`..subsurface::SPATIAL`).
+pub const SPATIAL: Descriptor = Descriptor {
+    name: "",
+    label: "",
+    module: "subsurface",
+    wgsl: "",
+    variant: None,
+    effects: Effects::NONE,
+    uniform: SubsurfaceUniform::LAYOUT,
+    params: |_| ModelParams([[0.0; 4]; super::MODEL_PARAM_ROWS]),
+    params_from: None,
+    kernel: None,
+    lut: None,
+    shade: local,
+    probe: |p, _, x| oblique_packed(p, x / (1.0 + x)),
+    probe_wgsl: "sss_oblique(x / (1.0 + x))",
+    total_reflectance: |_, _| [0.0; 3],
+};
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -308,6 +344,9 @@ mod tests {
         for (w, (_, r)) in edges.windows(2).skip(1).zip(&k.rings) {
             assert_eq!(*r, w[1]);
         }
-        assert_eq!(k.pack(8, [0.0; 4]).len(), KERNEL_ROWS);
+        let u = k.pack(8, [0.0; 4]);
+        assert_eq!(u.counts[0], 2.0);
+        assert_eq!(u.rings[1], [0.05, 0.05, 0.05, 2.0]);
+        assert_eq!(u.rings[2], [0.0; 4]);
     }
 }

@@ -8,8 +8,8 @@
 //! the normal-incidence kernel scaled by q(μ).
 
 use super::bake::{self, Bake};
-use super::subsurface::{Kernel, Params};
-use super::Material;
+use super::subsurface::{self, Kernel, Params};
+use super::{Descriptor, Effects, Material};
 
 pub fn params(m: &Material) -> Params {
     params_from(&bake::for_material(m), m)
@@ -31,3 +31,24 @@ pub fn kernel(m: &Material) -> Kernel {
     let b = bake::for_material(m);
     Kernel::from_rings(&b.edges, &b.mass)
 }
+
+/// `tabulated`.
+pub const TABULATED: Descriptor = Descriptor {
+    name: "tabulated",
+    label: "Measured profile",
+    module: "tabulated",
+    wgsl: include_str!("../../../shaders/tabulated.wgsl"),
+    variant: None,
+    effects: Effects {
+        subsurface: true,
+        translucency: true,
+        screen_space: true,
+        ..Effects::NONE
+    },
+    params: |m| params(m).pack(),
+    params_from: Some(|b, m| params_from(b, m).pack()),
+    kernel: Some(kernel),
+    lut: None,
+    total_reflectance: |m, _| super::prediction::measured(m),
+    ..subsurface::SPATIAL
+};

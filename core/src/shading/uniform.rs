@@ -63,12 +63,15 @@ pub trait Uniform: bytemuck::Pod {
     const LAYOUT: Layout;
 }
 
-/// Declares a model's uniform struct: `#[repr(C)]`, `Pod`, a multiple of 16 bytes (WGSL rounds
-/// a struct up to its 16-byte alignment) that fits in [`ModelParams`], with its [`Layout`]
-/// recorded. Members are f32 scalars, `[f32; 3]` (a WGSL `vec3<f32>`, followed by a scalar
-/// that fills its 16 bytes) and `[[f32; 4]; N]` (`array<vec4<f32>, N>`); padding is spelled
-/// out as members named `_pad*`, declared on the WGSL side too.
-macro_rules! model_uniform {
+/// Declares a struct the GPU reads, once: `#[repr(C)]`, `Pod`, with its [`Layout`] recorded
+/// (`Uniform::LAYOUT`), so a test compares it with the WGSL struct of the same name as naga
+/// lays it out (`core/tests/uniform_layout.rs`: the models' uniforms, the frame uniform, the
+/// subsurface pass's kernel). Members are f32 scalars, `[f32; 3]` (a WGSL `vec3<f32>`,
+/// followed by a scalar that fills its 16 bytes), `[f32; 4]`, `[[f32; 4]; 4]` (`mat4x4<f32>`)
+/// and `[[f32; 4]; N]` (`array<vec4<f32>, N>`); padding is spelled out as members named
+/// `_pad*`, declared on the WGSL side too. The size must be a multiple of 16 bytes (WGSL
+/// rounds a struct up to its 16-byte alignment).
+macro_rules! gpu_struct {
     (
         $(#[$meta:meta])*
         pub struct $name:ident {
@@ -95,10 +98,28 @@ macro_rules! model_uniform {
         }
 
         const _: () = assert!(
-            std::mem::size_of::<$name>() % 16 == 0
-                && std::mem::size_of::<$name>()
-                    <= std::mem::size_of::<$crate::shading::uniform::ModelParams>(),
-            concat!(stringify!($name), ": not a multiple of 16 bytes, or larger than ModelParams")
+            std::mem::size_of::<$name>() % 16 == 0,
+            concat!(stringify!($name), ": not a multiple of 16 bytes")
+        );
+    };
+}
+pub(crate) use gpu_struct;
+
+/// Declares a model's uniform struct ([`gpu_struct!`]) that fits in [`ModelParams`].
+macro_rules! model_uniform {
+    (
+        $(#[$meta:meta])*
+        pub struct $name:ident { $($body:tt)* }
+    ) => {
+        $crate::shading::uniform::gpu_struct! {
+            $(#[$meta])*
+            pub struct $name { $($body)* }
+        }
+
+        const _: () = assert!(
+            std::mem::size_of::<$name>()
+                <= std::mem::size_of::<$crate::shading::uniform::ModelParams>(),
+            concat!(stringify!($name), ": larger than ModelParams")
         );
     };
 }

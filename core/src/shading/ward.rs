@@ -10,8 +10,8 @@
 use super::{
     dipole,
     pixel::Pixel,
-    uniform::{f32x3, model_uniform, rgb, ModelParams},
-    Material,
+    uniform::{f32x3, model_uniform, rgb, ModelParams, Uniform},
+    Descriptor, Effects, Material,
 };
 use glam::DVec3;
 
@@ -241,6 +241,46 @@ pub fn lobe_specular(px: &Pixel, lobe: &Lobe, printed: bool) -> f64 {
         specular(&frame, px.l, px.v, lobe)
     }
 }
+
+const WGSL: &str = include_str!("../../../shaders/ward.wgsl");
+
+const EFFECTS: Effects = Effects {
+    specular: true,
+    texture: true,
+    ..Effects::NONE
+};
+
+/// The probed sub-function in WGSL: the specular lobe.
+const PROBE_WGSL: &str = "vec3<f32>(ward_specular(s, model.rho_s, model.alpha_x, model.alpha_y))";
+
+/// `ward`: the standard half-vector form.
+pub const WARD: Descriptor = Descriptor {
+    name: "ward",
+    label: "Ward BRDF",
+    module: "ward",
+    wgsl: WGSL,
+    variant: None,
+    effects: EFFECTS,
+    uniform: WardUniform::LAYOUT,
+    params: |m| Params::new(m, &Lobe::SKIN).pack(),
+    params_from: None,
+    kernel: None,
+    lut: None,
+    shade: |p, px| shade(p, false, px),
+    probe: |p, px, _| probe(p, false, px),
+    probe_wgsl: PROBE_WGSL,
+    total_reflectance: |m, _| dipole::total_reflectance(m),
+};
+
+/// `ward-printed`: eq. 1 as printed.
+pub const WARD_PRINTED: Descriptor = Descriptor {
+    name: "ward-printed",
+    label: "Ward BRDF (as printed)",
+    variant: Some("WARD_PRINTED"),
+    shade: |p, px| shade(p, true, px),
+    probe: |p, px, _| probe(p, true, px),
+    ..WARD
+};
 
 #[cfg(test)]
 mod tests {

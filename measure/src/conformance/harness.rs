@@ -46,23 +46,12 @@ pub const SHADE_KERNEL: &str = include_str!("../../../shaders/conformance_shade.
 /// The nondimensional kernel (not a composer module: appended after composition).
 pub const ND_KERNEL: &str = include_str!("../../../shaders/conformance_nd.wgsl");
 
-/// The per-model probe appended to the shade kernel.
-fn shade_probe(model: ShadingModel) -> &'static str {
-    match model {
-        ShadingModel::Ward | ShadingModel::WardPrinted => {
-            "fn conformance_probe(s: Surface, x: f32) -> vec3<f32> {\n    \
-             return vec3<f32>(ward_specular(s, model.rho_s, model.alpha_x, model.alpha_y));\n}\n"
-        }
-        ShadingModel::Dipole | ShadingModel::DipolePrinted => {
-            "fn conformance_probe(s: Surface, x: f32) -> vec3<f32> {\n    return dipole_profile(x);\n}\n"
-        }
-        ShadingModel::Oss | ShadingModel::OssStable => {
-            "fn conformance_probe(s: Surface, x: f32) -> vec3<f32> {\n    return oss_colour(x);\n}\n"
-        }
-        ShadingModel::Burley | ShadingModel::Tabulated | ShadingModel::Preintegrated => {
-            "fn conformance_probe(s: Surface, x: f32) -> vec3<f32> {\n    return sss_oblique(x / (1.0 + x));\n}\n"
-        }
-    }
+/// The per-model probe appended to the shade kernel: the model's `probe_wgsl` expression.
+fn shade_probe(model: ShadingModel) -> String {
+    format!(
+        "fn conformance_probe(s: Surface, x: f32) -> vec3<f32> {{\n    return {};\n}}\n",
+        model.descriptor().probe_wgsl
+    )
 }
 
 /// The WGSL the shade harness compiles for `model`.
