@@ -139,6 +139,36 @@ fn hdr_radiance_is_linear_in_the_light() {
 }
 
 #[test]
+fn the_heads_uvs_are_v_down_like_its_maps() {
+    // The albedo has the face upright: the crown along the top rows, the nose tip ~40 % down.
+    let maps = head::Maps {
+        albedo: false,
+        normal: false,
+    };
+    let model = head::load_with(&assets(), maps).unwrap();
+    let vs = &model.meshes[0].primitives[0].vertices;
+    let top = |axis: usize| {
+        vs.iter()
+            .max_by(|a, b| a.position[axis].total_cmp(&b.position[axis]))
+            .unwrap()
+    };
+    let (crown, nose) = (top(1), top(2));
+    assert!(crown.uv[1] < 0.05, "crown at v {}", crown.uv[1]);
+    assert!(
+        (0.3..0.45).contains(&nose.uv[1]),
+        "nose tip at v {}",
+        nose.uv[1]
+    );
+    // Tangents generated for these UVs: unit, perpendicular to the normal, ±1 handedness.
+    for v in vs.iter().step_by(97) {
+        let t = glam::Vec3::from_slice(&v.tangent[..3]);
+        let n = glam::Vec3::from_array(v.normal).normalize();
+        assert!((t.length() - 1.0).abs() < 1e-3 && t.dot(n).abs() < 1e-3);
+        assert!(v.tangent[3].abs() == 1.0);
+    }
+}
+
+#[test]
 fn the_normal_map_changes_the_heads_skin_and_both_stay_finite() {
     let gpu = Gpu::headless().unwrap_or_else(|e| panic!("{e}"));
     let maps = |normal| head::Maps {

@@ -48,6 +48,23 @@ fn save(img: &RgbaImage, name: &str) {
     }
 }
 
+/// The game's own frame: the scene and the menu's UI in one pass.
+fn menu_frame(rig: &Rig) -> RgbaImage {
+    let mut encoder = rig
+        .gpu
+        .device
+        .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+    rig.gg.encode(
+        &mut encoder,
+        &rig.target.targets,
+        &rig.target.view,
+        &rig.session,
+    );
+    rig.target.copy_out(&mut encoder);
+    rig.gpu.queue.submit([encoder.finish()]);
+    rig.target.read(&rig.gpu)
+}
+
 fn credit_shown(rig: &Rig) -> bool {
     rig.session
         .ui
@@ -86,6 +103,7 @@ fn the_showroom_shows_the_scanned_head_under_its_orbiting_light() {
     assert!(credit_shown(&rig), "the head is shown without its credit");
     let head = rig.shoot_frame(true);
     let empty = rig.shoot_frame(false);
+    let menu = menu_frame(&rig);
     // Four seconds later: the light has turned a quarter of its orbit.
     for _ in 0..240 {
         rig.update(1.0 / 60.0);
@@ -113,6 +131,7 @@ fn the_showroom_shows_the_scanned_head_under_its_orbiting_light() {
     let n = (W * H) as usize;
     for (img, name) in [
         (&runner, "runner"),
+        (&menu, "head-menu"),
         (&head, "head"),
         (&empty, "head-empty"),
         (&later, "head-later"),

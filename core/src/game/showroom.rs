@@ -96,27 +96,39 @@ pub fn is_showroom(screen: Screen) -> bool {
 /// width, whichever is reached first (`stage`: a fraction of the screen, x
 /// right, y down, 0..1) and centred on it by a lens shift.
 pub fn framing(feet: Vec3, aspect: f32, stage: Rect) -> CameraPose {
-    let centre = feet + (BUST_LO + BUST_HI) * 0.5;
-    framing_box(centre, BUST_HI - BUST_LO, aspect, stage)
-}
-
-/// The showroom camera for the scanned head of a runner at `feet` ([`head_matrix`]): the
-/// box [`HEAD_LO`]..[`HEAD_HI`] framed as [`framing`] frames the bust.
-pub fn head_framing(feet: Vec3, aspect: f32, stage: Rect) -> CameraPose {
-    let centre = feet + Vec3::Y * HEAD_HEIGHT + (HEAD_LO + HEAD_HI) * 0.5;
-    framing_box(centre, HEAD_HI - HEAD_LO, aspect, stage)
-}
-
-/// A box of `size` around `centre` filling [`FILL`] of `stage`'s height or [`FILL_W`] of
-/// its width, seen from [`VIEW_DIR`].
-fn framing_box(centre: Vec3, size: Vec3, aspect: f32, stage: Rect) -> CameraPose {
     let aspect = aspect.max(1e-3);
     let fov_y = FOV_Y_DEG.to_radians();
     let t = (fov_y * 0.5).tan();
+    let size = BUST_HI - BUST_LO;
+    let centre = feet + (BUST_LO + BUST_HI) * 0.5;
     // The bound spans size / (d·t) in NDC vertically (÷ aspect horizontally); the stage spans
     // twice its fraction of the screen.
     let (sw, sh) = (2.0 * stage.w.max(0.2), 2.0 * stage.h.max(0.2));
     let d = (size.y / (t * sh * FILL)).max(size.x / (t * aspect * sw * FILL_W)) + size.z * 0.5;
+    let c = stage.center();
+    CameraPose {
+        eye: centre + VIEW_DIR.normalize() * d,
+        look: centre,
+        fov_y,
+        shift: Vec2::new(2.0 * c[0] - 1.0, 1.0 - 2.0 * c[1]),
+        near: 0.05,
+        far: 200.0,
+    }
+}
+
+/// The showroom camera for the scanned head of a runner at `feet` ([`head_matrix`]): the
+/// sphere around the box [`HEAD_LO`]..[`HEAD_HI`] filling [`FILL`] of `stage`'s height or
+/// [`FILL_W`] of its width (a sphere, since at arm's length the box's near corners would
+/// reach past a box fitted by its faces), centred on it by a lens shift.
+pub fn head_framing(feet: Vec3, aspect: f32, stage: Rect) -> CameraPose {
+    let centre = feet + Vec3::Y * HEAD_HEIGHT + (HEAD_LO + HEAD_HI) * 0.5;
+    let radius = 0.5 * (HEAD_HI - HEAD_LO).length();
+    let fov_y = FOV_Y_DEG.to_radians();
+    let t = (fov_y * 0.5).tan();
+    // The half-angles the stage spans around its centre, vertically and horizontally.
+    let up = (t * stage.h.max(0.1) * FILL).atan();
+    let across = (t * aspect.max(1e-3) * stage.w.max(0.1) * FILL_W).atan();
+    let d = radius / up.min(across).sin();
     let c = stage.center();
     CameraPose {
         eye: centre + VIEW_DIR.normalize() * d,
