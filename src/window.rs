@@ -201,6 +201,7 @@ impl App {
                 "p" => session.key(GameKey::Pause),
                 "f" => session.key(GameKey::FrameStats),
                 "c" => session.key(GameKey::Camera),
+                "h" => session.key(GameKey::Subject),
                 "Escape" => match session.game.screen() {
                     dermis_core::game::Screen::Main => event_loop.exit(),
                     dermis_core::game::Screen::Play if !session.is_paused() => session.pause(),

@@ -8,7 +8,7 @@ use std::path::Path;
 use dermis_core::face::head::{CREDIT_LINES, HEAD_CENTRE};
 use dermis_core::game::menu;
 use dermis_core::game::showroom::{self, head_matrix, HEAD_HI, HEAD_LO};
-use dermis_core::game::{Screen, Session, Subject, Viewport};
+use dermis_core::game::{Key, Screen, Session, Subject, Viewport};
 use dermis_core::render::rig::{key_light, CHARACTER};
 use dermis_core::scene::SceneAssets;
 use dermis_core::ui::{Insets, Rect};
@@ -65,6 +65,7 @@ fn without_the_head_there_is_no_subject_option() {
     let mut s = Session::new(&model, 3, None, false);
     s.gui.offer_head(false);
     s.gui.set_subject(Subject::Head);
+    s.key(Key::Subject);
     for _ in 0..3 {
         s.update(FRAME, &model, viewports()[0]);
     }
@@ -151,6 +152,11 @@ fn the_head_option_swaps_the_subject_framed_in_the_stage_with_its_credit() {
         }
         let turned = angles.last().unwrap() - angles[0];
         assert!(turned.abs() > 0.3, "the light turned {turned} rad in 4 s");
+        // The H key switches back and forth, as the option does.
+        s.key(Key::Subject);
+        assert_eq!(s.gui.subject(), Subject::Runner);
+        s.key(Key::Subject);
+        assert_eq!(s.gui.subject(), Subject::Head);
         // A run shows the runner (with the props) again.
         s.game.start();
         s.update(FRAME, &model, vp);

@@ -35,6 +35,9 @@ pub enum Key {
     /// Switch the play camera between the wide follow camera and its close-up (the play
     /// screen's "View" button does the same).
     Camera,
+    /// Switch the showroom's subject runner ↔ scanned head where the head is offered (the
+    /// menu's subject option does the same); nothing elsewhere.
+    Subject,
 }
 
 /// The wide follow camera: eye offset and look-at point from the runner's feet (x right, y
@@ -237,6 +240,7 @@ impl Session {
             }
             Key::FrameStats => self.gui.show_frame_stats = !self.gui.show_frame_stats,
             Key::Camera => self.toggle_camera(),
+            Key::Subject => self.gui.set_subject(self.gui.subject().other()),
         }
     }
 
