@@ -8,6 +8,9 @@
 
 @group(2) @binding(1) var base_color: texture_2d<f32>;
 @group(2) @binding(2) var base_sampler: sampler;
+// Tangent-space normal map (rgb = (xyz + 1) / 2, +y toward decreasing v); alpha 0: none (the
+// flat default of meshes without one).
+@group(2) @binding(3) var normal_map: texture_2d<f32>;
 
 struct VertexIn {
     @location(0) position: vec3<f32>,
@@ -42,8 +45,21 @@ fn vs_main(v: VertexIn) -> VertexOut {
     return out;
 }
 
+// The shading normal: the normal map's, in the interpolated tangent frame (the bitangent
+// points toward increasing v, so the map's +y is −b); without a map, the vertex normal as it is.
+fn shading_normal(in: VertexOut) -> vec3<f32> {
+    let m = textureSample(normal_map, base_sampler, in.uv);
+    let n = safe_normalize(in.normal, vec3<f32>(0.0, 1.0, 0.0));
+    var t = in.tangent.xyz - n * dot(n, in.tangent.xyz);
+    t = safe_normalize(t, select(vec3<f32>(1.0, 0.0, 0.0), vec3<f32>(0.0, 0.0, 1.0), abs(n.x) > 0.9));
+    let b = cross(n, t) * select(1.0, -1.0, in.tangent.w < 0.0);
+    let k = m.xyz * 2.0 - 1.0;
+    let mapped = safe_normalize(t * k.x - b * k.y + n * k.z, n);
+    return select(in.normal, mapped, m.a > 0.5);
+}
+
 fn surface_at(in: VertexOut, albedo: vec3<f32>) -> Surface {
-    var s = make_surface(in.world_pos, in.normal, in.tangent, albedo, in.thickness);
+    var s = make_surface(in.world_pos, shading_normal(in), in.tangent, albedo, in.thickness);
     // Curvature radius from screen-space derivatives: how far the surface moves per unit of
     // normal change across a pixel (large on flat parts, small on fingers and ears).
     let dn = length(fwidth(in.normal));

@@ -73,8 +73,10 @@ pub fn game_settings_path(args: &GameArgs) -> Option<PathBuf> {
 }
 
 pub fn run_game(args: GameArgs) -> Result<(), String> {
+    // The showroom's scanned head too (its subject option appears where it loads).
     let assets = SceneAssets::load(&crate::paths::assets_dir(), args.window.model.as_deref())
-        .map_err(|e| e.to_string())?;
+        .map_err(|e| e.to_string())?
+        .with_head(&crate::paths::assets_dir());
     let path = game_settings_path(&args);
     let mut session = Session::new(&assets.character, args.seed, path, args.autoplay);
     if let Some(m) = args.shading {
@@ -204,6 +206,7 @@ impl App {
                 "p" => session.key(GameKey::Pause),
                 "f" => session.key(GameKey::FrameStats),
                 "c" => session.key(GameKey::Camera),
+                "h" => session.key(GameKey::Subject),
                 "Escape" => match session.game.screen() {
                     dermis_core::game::Screen::Main => event_loop.exit(),
                     dermis_core::game::Screen::Play if !session.is_paused() => session.pause(),

@@ -139,6 +139,100 @@ fn hdr_radiance_is_linear_in_the_light() {
 }
 
 #[test]
+fn the_heads_uvs_are_v_down_like_its_maps() {
+    // The albedo has the face upright: the crown along the top rows, the nose tip ~40 % down.
+    let maps = head::Maps {
+        albedo: false,
+        normal: false,
+    };
+    let model = head::load_with(&assets(), maps).unwrap();
+    let vs = &model.meshes[0].primitives[0].vertices;
+    let top = |axis: usize| {
+        vs.iter()
+            .max_by(|a, b| a.position[axis].total_cmp(&b.position[axis]))
+            .unwrap()
+    };
+    let (crown, nose) = (top(1), top(2));
+    assert!(crown.uv[1] < 0.05, "crown at v {}", crown.uv[1]);
+    assert!(
+        (0.3..0.45).contains(&nose.uv[1]),
+        "nose tip at v {}",
+        nose.uv[1]
+    );
+    // Tangents generated for these UVs: unit, perpendicular to the normal, ±1 handedness.
+    for v in vs.iter().step_by(97) {
+        let t = glam::Vec3::from_slice(&v.tangent[..3]);
+        let n = glam::Vec3::from_array(v.normal).normalize();
+        assert!((t.length() - 1.0).abs() < 1e-3 && t.dot(n).abs() < 1e-3);
+        assert!(v.tangent[3].abs() == 1.0);
+    }
+}
+
+#[test]
+fn the_normal_map_changes_the_heads_skin_and_both_stay_finite() {
+    let gpu = Gpu::headless().unwrap_or_else(|e| panic!("{e}"));
+    let maps = |normal| head::Maps {
+        albedo: false,
+        normal,
+    };
+    let with = head::load_with(&assets(), maps(true)).unwrap();
+    let without = head::load_with(&assets(), maps(false)).unwrap();
+    assert!(with.materials[0].normal_texture.is_some());
+    assert!(without.materials[0].normal_texture.is_none());
+    let (w, h) = (160, 160);
+    let mut rw = HeadRenderer::new(&gpu, &with, &SKIN1, w, h, true).unwrap();
+    let mut ro = HeadRenderer::new(&gpu, &without, &SKIN1, w, h, true).unwrap();
+    let cam = head::camera();
+    for shading in [ShadingModel::Preintegrated, ShadingModel::Ward] {
+        for light in [FaceLight::Front, FaceLight::Side] {
+            let pos = light.position();
+            let a = rw.radiance(&gpu, shading, &cam, pos, 1.0).unwrap();
+            let b = ro.radiance(&gpu, shading, &cam, pos, 1.0).unwrap();
+            for img in [&a, &b] {
+                let bad = img
+                    .iter()
+                    .filter(|p| p.iter().any(|c| !c.is_finite() || *c < 0.0))
+                    .count();
+                assert_eq!(
+                    bad, 0,
+                    "{shading} {light:?}: {bad} pixels not finite or negative"
+                );
+            }
+            // Skin lit in both: the mapped normals move its radiance pixel by pixel, and
+            // leave the head's total about where it was.
+            let (mut n, mut sum_ln, mut moved) = (0usize, 0f64, 0usize);
+            let (mut ta, mut tb) = (0f64, 0f64);
+            for (p, q) in a.iter().zip(&b) {
+                ta += p[0] as f64;
+                tb += q[0] as f64;
+                if p[0] > 1e-3 && q[0] > 1e-3 {
+                    let d = (p[0] as f64 / q[0] as f64).ln().abs();
+                    n += 1;
+                    sum_ln += d;
+                    moved += usize::from(d > 0.02);
+                }
+            }
+            let mean = sum_ln / n.max(1) as f64;
+            println!(
+                "{shading} {light:?}: {n} lit px, mean |ln(with/without)| {mean:.4}, \
+                 {moved} px moved > 2 %, totals {:.3}",
+                ta / tb
+            );
+            assert!(n > 2000, "{shading} {light:?}: {n} lit pixels");
+            assert!(
+                mean > 0.01 && moved > n / 10,
+                "{shading} {light:?}: the normal map changes little (mean {mean:.4}, {moved} px)"
+            );
+            assert!(
+                (0.85..1.15).contains(&(ta / tb)),
+                "{shading} {light:?}: the normal map moved the head's total by {:.3}",
+                ta / tb
+            );
+        }
+    }
+}
+
+#[test]
 fn render_head_writes_hdr_and_png() {
     let dir = tmp("cli");
     let (png, pfm) = (dir.join("head.png"), dir.join("head.pfm"));

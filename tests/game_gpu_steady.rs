@@ -1,11 +1,12 @@
 //! §4.3, measured on the real renderer: during play — the bot playing, the player switching
 //! the shading model — no GPU object (buffer, texture, view, bind group, pipeline, shader,
-//! sampler) is created, and wgpu's own allocations per frame do not grow over 1000 frames.
+//! sampler) is created, and wgpu's own allocations per frame do not grow over 1000 frames —
+//! the menu's showroom showing the scanned head for a while in between (uploaded at load).
 //! One test in its own binary, so the counting allocator sees only this thread's work.
 
 use std::path::Path;
 
-use dermis_core::game::{GameFrame, GameGpu, Session};
+use dermis_core::game::{GameFrame, GameGpu, Screen, Session, Subject};
 use dermis_core::render::{
     Clock, FrameDriver, Gpu, LiveObjects, Offscreen, Output, OFFSCREEN_FORMAT,
 };
@@ -18,10 +19,11 @@ static A: dermis_core::heap::Counting = dermis_core::heap::Counting;
 #[test]
 fn play_creates_nothing_and_wgpu_allocations_do_not_grow() {
     let gpu = Gpu::headless().unwrap_or_else(|e| panic!("{e}"));
-    let assets =
-        SceneAssets::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("assets"), None).unwrap();
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets");
+    let assets = SceneAssets::load(&root, None).unwrap().with_head(&root);
     let (w, h) = (160, 90);
     let mut gg = GameGpu::new(&gpu, OFFSCREEN_FORMAT, &assets, ShadingModel::DEFAULT).unwrap();
+    assert!(gg.has_head(), "the showroom's head did not load");
     let target = Offscreen::new(&gpu, w, h);
     let mut session = Session::new(&assets.character, 7, None, true);
     // From the first model in menu order, whatever the default: both measured windows below
@@ -36,7 +38,14 @@ fn play_creates_nothing_and_wgpu_allocations_do_not_grow() {
     let mut live = None;
     let mut dermis_allocs = Vec::new();
     let mut wgpu_allocs = Vec::new();
+    let mut head_frames = 0;
     for frame in 0..frames {
+        // Back to the menu in the middle of a model's window (neither its first nor its last
+        // measured frames), the showroom on the head until the bot starts the next run.
+        if frame == 520 {
+            session.game.to_main();
+            session.gui.set_subject(Subject::Head);
+        }
         // The player switches the model every 50 frames: pipelines exist already.
         if frame % 50 == 49 {
             let next = session.shading().next();
@@ -45,6 +54,9 @@ fn play_creates_nothing_and_wgpu_allocations_do_not_grow() {
         let times = GameFrame::new(&mut session, &mut gg, &assets.character)
             .run(&mut driver, &gpu, Output::Offscreen(&target))
             .unwrap();
+        if frame > warm_up && session.shown_subject() == Subject::Head {
+            head_frames += 1;
+        }
         let a = times.allocs;
         let (a0, a1, a2) = (a.start, a.updated, a.submitted);
         if frame == warm_up {
@@ -57,6 +69,8 @@ fn play_creates_nothing_and_wgpu_allocations_do_not_grow() {
         }
     }
     assert!(session.game.ticks() > 0 && ShadingModel::ALL.contains(&session.shading()));
+    assert!(head_frames >= 20, "the head was shown {head_frames} frames");
+    assert_eq!(session.game.screen(), Screen::Play);
     // dermis' own per-frame code: no heap allocation at all in steady state.
     let worst = dermis_allocs.iter().max().copied().unwrap_or(0);
     assert_eq!(worst, 0, "dermis allocated on some frame: max {worst}");

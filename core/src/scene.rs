@@ -13,6 +13,9 @@ use crate::render::{PropInstance, PropKind};
 pub struct SceneAssets {
     pub character: Model,
     pub props: Vec<(PropKind, Model)>,
+    /// The scanned head for the game's showroom (`face::head`), where the shell asked for it
+    /// ([`SceneAssets::with_head`]) and it loaded; the APK does not carry it.
+    pub head: Option<Model>,
 }
 
 impl SceneAssets {
@@ -26,7 +29,22 @@ impl SceneAssets {
         Ok(Self {
             character: load_gltf(character.unwrap_or(&default))?,
             props: Self::props(&|path| load_gltf(&assets_dir.join(path)))?,
+            head: None,
         })
+    }
+
+    /// Also loads the scanned head (`assets_dir/head/`, albedo and normal map) for the
+    /// showroom. A missing or bad head is one logged line and no head: the showroom then
+    /// offers only the runner.
+    pub fn with_head(mut self, assets_dir: &Path) -> Self {
+        self.head = match crate::face::head::load(assets_dir, true) {
+            Ok(head) => Some(head),
+            Err(e) => {
+                log::warn!("no scanned head in the showroom: {e}");
+                None
+            }
+        };
+        self
     }
 
     /// Loads the character and every prop through `read`, which maps a path relative to the
@@ -45,6 +63,7 @@ impl SceneAssets {
         Ok(Self {
             character: model(Self::CHARACTER)?,
             props: Self::props(&model)?,
+            head: None,
         })
     }
 

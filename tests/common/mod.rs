@@ -20,10 +20,16 @@ pub struct Rig {
 
 impl Rig {
     /// A fresh game (3 lives, no save) rendering into a `width`×`height` target.
+    #[allow(dead_code)] // Not every test binary that shares the rig uses the plain assets.
     pub fn new(width: u32, height: u32) -> Self {
-        let gpu = Gpu::headless().unwrap_or_else(|e| panic!("{e}"));
         let assets = SceneAssets::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("assets"), None)
             .unwrap_or_else(|e| panic!("{e}"));
+        Self::with_assets(width, height, assets)
+    }
+
+    /// The same rig for `assets` (e.g. with the showroom's scanned head).
+    pub fn with_assets(width: u32, height: u32, assets: SceneAssets) -> Self {
+        let gpu = Gpu::headless().unwrap_or_else(|e| panic!("{e}"));
         let gg = GameGpu::new(&gpu, OFFSCREEN_FORMAT, &assets, ShadingModel::DEFAULT).unwrap();
         let target = Offscreen::new(&gpu, width, height);
         let session = Session::new(&assets.character, 3, None, false);
@@ -49,6 +55,8 @@ impl Rig {
     /// Advances the session by `dt` seconds and uploads the frame, as the shells do.
     pub fn update(&mut self, dt: f32) {
         let viewport = self.viewport();
+        // As the shells' game frame does: the head's option where the head was uploaded.
+        self.session.gui.offer_head(self.gg.has_head());
         self.session.update(dt, &self.assets.character, viewport);
         self.gg
             .upload(&self.gpu.queue, &mut self.session, &self.assets.character);

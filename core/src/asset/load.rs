@@ -349,6 +349,7 @@ fn load_materials(
             name: mat.name().map(str::to_owned),
             base_color_factor: factor,
             base_color_texture,
+            normal_texture: None,
         });
     }
     Ok((materials, textures))

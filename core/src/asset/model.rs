@@ -98,6 +98,11 @@ pub struct Material {
     pub base_color_factor: [f32; 4],
     /// Index into [`Model::textures`].
     pub base_color_texture: Option<usize>,
+    /// A tangent-space normal map (index into [`Model::textures`], linear RGB: xyz = 2·rgb − 1
+    /// in the vertex's tangent, bitangent and normal, +y toward decreasing v, the OpenGL
+    /// convention). glTF files do not set it (their materials shade with the vertex normals);
+    /// the scanned head's loader does (`face::head`).
+    pub normal_texture: Option<usize>,
 }
 
 /// A decoded image: RGBA8, row-major, `srgb` when it holds colour (base colour textures).

@@ -59,6 +59,7 @@ fn skinned_model(name: &str, vertices: Vec<Vertex>, indices: Vec<u32>, half: f32
             name: None,
             base_color_factor: [1.0; 4],
             base_color_texture: None,
+            normal_texture: None,
         }],
         textures: Vec::new(),
         animations: Vec::new(),

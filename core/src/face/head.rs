@@ -7,9 +7,10 @@
 
 use std::path::Path;
 
-use glam::{Mat4, Vec3};
+use glam::{Mat4, Vec2, Vec3};
 
 use crate::anim::Pose;
+use crate::asset::tangents::generate_tangents;
 use crate::asset::{load_gltf, Aabb, AssetError, Model, Node, Skin, TextureImage, Transform};
 use crate::render::{DrawSet, FrameView, Gpu, Light, Offscreen, Renderer, RgbaImage};
 use crate::shading::{Material, ShadingModel};
@@ -20,16 +21,65 @@ pub const DIR: &str = "head";
 pub const MESH_FILE: &str = "LeePerrySmith.glb";
 /// The albedo (sRGB JPEG, 1024²) on TEXCOORD_0.
 pub const ALBEDO_FILE: &str = "Map-COL.jpg";
+/// The tangent-space normal map (linear JPEG, 1024², +y up: the OpenGL convention) on
+/// TEXCOORD_0: the scan's pores and wrinkles the mesh does not carry.
+pub const NORMAL_FILE: &str = "Infinite-Level_02_Tangent_SmoothUV.jpg";
 /// Metres per model unit: 3.8 units across the ears → 15.2 cm.
 pub const METRES_PER_UNIT: f32 = 0.04;
 /// The credit the licence asks for wherever the head is shown or shipped.
 pub const ATTRIBUTION: &str = "Head: \"Infinite, 3D Head Scan\" by Lee Perry-Smith / \
 Infinite-Realities (ir-ltd.net), based on a work at triplegangers.com, CC BY 3.0";
+/// The same credit in two short lines, for a screen that shows the head (the showroom).
+pub const CREDIT_LINES: [&str; 2] = [
+    "Head scan: Lee Perry-Smith / Infinite-Realities (ir-ltd.net)",
+    "based on a work at triplegangers.com, CC BY 3.0",
+];
 
-/// Loads the head in metres as a one-joint skinned model; with `textured`, its albedo map is
-/// the base colour (all skin), else the base colour is white (the homogeneous medium the path
-/// tracer renders).
+/// Which of the head's maps [`load_with`] reads.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Maps {
+    /// The albedo map as the base colour (all skin); else white (the homogeneous medium the
+    /// path tracer renders).
+    pub albedo: bool,
+    /// The tangent-space normal map.
+    pub normal: bool,
+}
+
+/// Loads the head in metres as a one-joint skinned model with its normal map; with
+/// `textured`, its albedo map is the base colour (all skin), else the base colour is white
+/// (the homogeneous medium the path tracer renders).
 pub fn load(assets_dir: &Path, textured: bool) -> Result<Model, AssetError> {
+    load_with(
+        assets_dir,
+        Maps {
+            albedo: textured,
+            normal: true,
+        },
+    )
+}
+
+/// Reads one of the head's JPEG maps (`srgb`: colour, else linear data).
+fn read_map(dir: &Path, file: &str, srgb: bool) -> Result<TextureImage, AssetError> {
+    let path = dir.join(file);
+    let bytes = std::fs::read(&path)
+        .map_err(|e| AssetError::new(path.display().to_string(), e.to_string()))?;
+    let rgba = image::load_from_memory(&bytes)
+        .map_err(|e| AssetError::new(path.display().to_string(), e.to_string()))?
+        .into_rgba8();
+    Ok(TextureImage {
+        width: rgba.width(),
+        height: rgba.height(),
+        rgba8: rgba.into_raw(),
+        srgb,
+    })
+}
+
+/// Loads the head in metres as a one-joint skinned model with the maps `maps` asks for.
+///
+/// The file's UVs have v up (v = 0 at the images' bottom row, as the three.js example that
+/// ships it samples them); the engine samples v down, so v is flipped here and the tangents
+/// are generated again for the flipped UVs.
+pub fn load_with(assets_dir: &Path, maps: Maps) -> Result<Model, AssetError> {
     let dir = assets_dir.join(DIR);
     let file = load_gltf(&dir.join(MESH_FILE))?;
     let source = file.source.clone();
@@ -44,27 +94,28 @@ pub fn load(assets_dir: &Path, textured: bool) -> Result<Model, AssetError> {
     for v in &mut primitive.vertices {
         let p = Vec3::from_array(v.position) * METRES_PER_UNIT;
         v.position = p.to_array();
+        v.uv[1] = 1.0 - v.uv[1];
         v.joints = [0; 4];
         v.weights = [1.0, 0.0, 0.0, 0.0];
         lo = lo.min(p);
         hi = hi.max(p);
     }
+    let vs = &primitive.vertices;
+    let positions: Vec<Vec3> = vs.iter().map(|v| Vec3::from_array(v.position)).collect();
+    let normals: Vec<Vec3> = vs.iter().map(|v| Vec3::from_array(v.normal)).collect();
+    let uvs: Vec<Vec2> = vs.iter().map(|v| Vec2::from_array(v.uv)).collect();
+    let tangents = generate_tangents(&positions, &normals, &uvs, &primitive.indices);
+    for (v, t) in primitive.vertices.iter_mut().zip(tangents) {
+        v.tangent = t;
+    }
     primitive.bounds = Aabb { min: lo, max: hi };
     primitive.material = Some(0);
     let mut textures = Vec::new();
-    if textured {
-        let path = dir.join(ALBEDO_FILE);
-        let bytes = std::fs::read(&path)
-            .map_err(|e| AssetError::new(path.display().to_string(), e.to_string()))?;
-        let rgba = image::load_from_memory(&bytes)
-            .map_err(|e| AssetError::new(path.display().to_string(), e.to_string()))?
-            .into_rgba8();
-        textures.push(TextureImage {
-            width: rgba.width(),
-            height: rgba.height(),
-            rgba8: rgba.into_raw(),
-            srgb: true,
-        });
+    if maps.albedo {
+        textures.push(read_map(&dir, ALBEDO_FILE, true)?);
+    }
+    if maps.normal {
+        textures.push(read_map(&dir, NORMAL_FILE, false)?);
     }
     let node = |mesh, skin| Node {
         name: None,
@@ -90,7 +141,8 @@ pub fn load(assets_dir: &Path, textured: bool) -> Result<Model, AssetError> {
         materials: vec![crate::asset::Material {
             name: Some("skin".into()),
             base_color_factor: [1.0; 4],
-            base_color_texture: textured.then_some(0),
+            base_color_texture: maps.albedo.then_some(0),
+            normal_texture: maps.normal.then(|| textures.len() - 1),
         }],
         textures,
         animations: Vec::new(),

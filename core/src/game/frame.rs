@@ -78,6 +78,7 @@ impl FrameWork for GameFrame<'_> {
             scale: self.scale,
             insets: self.insets,
         };
+        self.session.gui.offer_head(self.gpu.has_head());
         self.info = self.session.update(dt as f32, self.character, viewport);
     }
 

@@ -1,9 +1,12 @@
 //! The game's GPU side: the renderer with the scene uploaded plus the UI renderer, created at
 //! load — the first model's pipeline with them, the other reachable models' on a background
-//! thread while the menu's first frames render, all in place before play starts, so nothing
-//! is created in play.
+//! thread once the first frame is out, all in place before play starts, so nothing is
+//! created in play. Where the scanned head was loaded ([`SceneAssets::head`]) it is uploaded
+//! here too, beside the runner, for the showroom: showing it swaps what is drawn and creates
+//! nothing.
 
 use super::{Screen, Session};
+use crate::anim::Pose;
 use crate::asset::Model;
 use crate::render::{Gpu, PipelineSet, RenderStats, Renderer, Targets, UiRenderer, MSAA_SAMPLES};
 use crate::scene::SceneAssets;
@@ -13,8 +16,18 @@ use crate::shading::ShadingModel;
 pub struct GameGpu {
     pub renderer: Renderer,
     pub ui: UiRenderer,
+    /// The showroom's scanned head, when it was loaded and uploaded.
+    pub head: Option<ShowroomHead>,
     /// Frames uploaded.
     frames: u64,
+}
+
+/// The scanned head as the showroom draws it: its renderer slot, the model and its (rest)
+/// pose for the joint palette.
+pub struct ShowroomHead {
+    pub slot: usize,
+    pub model: Model,
+    pub pose: Pose,
 }
 
 impl GameGpu {
@@ -32,13 +45,38 @@ impl GameGpu {
         renderer.load_scene(gpu, &assets.character, &assets.props, &SKIN1)?;
         // Contact shadows under the runner and the props, so nothing floats.
         renderer.enable_blob_shadows(gpu);
+        let head =
+            assets
+                .head
+                .as_ref()
+                .and_then(|model| match renderer.add_subject(gpu, model, &SKIN1) {
+                    Ok(slot) => {
+                        let mut pose = Pose::new(model);
+                        pose.update_world(model);
+                        Some(ShowroomHead {
+                            slot,
+                            model: model.clone(),
+                            pose,
+                        })
+                    }
+                    Err(e) => {
+                        log::warn!("the showroom's head is left out: {e}");
+                        None
+                    }
+                });
         let (rgba, w, h) = crate::ui::atlas_rgba();
         let ui = UiRenderer::new(&gpu.device, &gpu.queue, format, MSAA_SAMPLES, &rgba, w, h);
         Ok(Self {
             renderer,
             ui,
+            head,
             frames: 0,
         })
+    }
+
+    /// Whether the showroom can show the scanned head.
+    pub fn has_head(&self) -> bool {
+        self.head.is_some()
     }
 
     /// Waits for every pipeline still being built in the background (before counting GPU
@@ -59,7 +97,13 @@ impl GameGpu {
         let play = session.game.screen() == Screen::Play;
         self.renderer
             .receive_pipelines(session.draw_set().shading, play);
-        session.upload(queue, &mut self.renderer, &mut self.ui, character);
+        session.upload(
+            queue,
+            &mut self.renderer,
+            &mut self.ui,
+            character,
+            self.head.as_ref(),
+        );
     }
 
     /// Records the frame's single pass into `encoder`.

@@ -22,13 +22,13 @@ pub mod track;
 
 pub use bot::Bot;
 pub use frame::{soak_sample, AfterEncode, GameFrame};
-pub use gpu::GameGpu;
+pub use gpu::{GameGpu, ShowroomHead};
 pub use input::{Input, Swipe};
 pub use menu::MenuLayout;
 pub use screens::{GameUi, UiOutcome};
 pub use session::{FrameInfo, Key, Session, Viewport};
 pub use settings::Settings;
-pub use showroom::Showroom;
+pub use showroom::{Showroom, Subject};
 pub use track::{Chunk, Obstacle, ObstacleKind, LANE_WIDTH};
 
 use glam::{Mat4, Quat, Vec3};

@@ -3,12 +3,16 @@
 //! character, see [`super::menu`]), play (score; when paused a "Paused" panel with
 //! Resume) and game over (score, best, replay), plus an optional frame-time overlay on every
 //! screen.
+//! Where the scanned head was loaded, the main screen also has a subject option in the
+//! showroom's corner (runner / head) and, while the head is shown, its credit (CC BY 3.0).
 //! Text that changes is formatted into reused `String`s, so a frame allocates nothing.
 
 use std::fmt::Write;
 use std::time::Instant;
 
+use super::showroom::Subject;
 use super::{menu, Game, Screen, Settings};
+use crate::face::head::CREDIT_LINES;
 use crate::ui::{Anchor, Color, Ui};
 
 const TITLE: Color = [1.0, 0.86, 0.45, 1.0];
@@ -27,6 +31,8 @@ pub struct UiOutcome {
     pub resumed: bool,
     /// The play screen's "View" button: switch the camera (wide ↔ close-up).
     pub camera_toggled: bool,
+    /// The showroom's subject option switched runner ↔ head.
+    pub subject_changed: bool,
 }
 
 /// How often the frame-time overlay's numbers change (seconds of frames averaged), so the
@@ -37,6 +43,11 @@ pub const FRAME_STATS_PERIOD_S: f64 = 0.5;
 /// [`menu::PANEL_MIN_W`], at most [`menu::PANEL_W`]).
 pub const GAME_OVER_SHARE: f32 = 0.4;
 
+/// The showroom's subject option (logical units) and the head's credit's largest text size.
+pub const SUBJECT_W: f32 = 190.0;
+pub const SUBJECT_H: f32 = 44.0;
+pub const CREDIT_SIZE: f32 = 14.0;
+
 /// Per-screen text buffers, reused every frame.
 pub struct GameUi {
     option: String,
@@ -44,6 +55,9 @@ pub struct GameUi {
     line2: String,
     /// Show the frame-time overlay. Off by default.
     pub show_frame_stats: bool,
+    /// The showroom's subject; `None` where the scanned head is not loaded (the option is
+    /// absent).
+    subject: Option<Subject>,
     stats_text: String,
     stats: FrameStats,
     last_frame_start: Option<Instant>,
@@ -73,9 +87,32 @@ impl GameUi {
             line1: String::with_capacity(64),
             line2: String::with_capacity(64),
             show_frame_stats: false,
+            subject: None,
             stats_text: String::with_capacity(128),
             stats: FrameStats::default(),
             last_frame_start: None,
+        }
+    }
+
+    /// Offers the showroom's subject option (runner / head) when `head` is loaded, else
+    /// takes it away (the runner is shown).
+    pub fn offer_head(&mut self, head: bool) {
+        self.subject = match (head, self.subject) {
+            (false, _) => None,
+            (true, None) => Some(Subject::Runner),
+            (true, s) => s,
+        };
+    }
+
+    /// The showroom's subject (the runner where the head is not offered).
+    pub fn subject(&self) -> Subject {
+        self.subject.unwrap_or_default()
+    }
+
+    /// Chooses the showroom's subject; the head only where it is offered.
+    pub fn set_subject(&mut self, subject: Subject) {
+        if self.subject.is_some() {
+            self.subject = Some(subject);
         }
     }
 
@@ -238,6 +275,48 @@ impl GameUi {
             let _ = write!(self.line1, "Best: {} m", settings.best.max(game.best()));
             let best = Anchor::Bottom.place(panel, [0.0, layout.gap()], [bw, menu::BEST_H]);
             ui.label_centered(best, &self.line1, menu::BEST_H, DIM);
+        }
+        if let Some(subject) = self.subject {
+            self.subject_option(ui, layout.stage, subject, out);
+        }
+    }
+
+    /// The showroom's subject option in the stage's top-left corner and, while the head is
+    /// shown, its credit along the stage's bottom.
+    fn subject_option(
+        &mut self,
+        ui: &mut Ui,
+        stage: crate::ui::Rect,
+        subject: Subject,
+        out: &mut UiOutcome,
+    ) {
+        let option = crate::ui::Rect::new(
+            stage.x,
+            stage.y,
+            SUBJECT_W.min(stage.w),
+            SUBJECT_H.min(stage.h),
+        );
+        if ui.button("subject", option, subject.label()) {
+            self.subject = Some(subject.other());
+            out.subject_changed = true;
+        }
+        if subject != Subject::Head {
+            return;
+        }
+        let widest = CREDIT_LINES
+            .iter()
+            .map(|l| ui.text_width(l, CREDIT_SIZE))
+            .fold(0.0, f32::max);
+        let pad = 4.0;
+        let size = (CREDIT_SIZE * (stage.w - 2.0 * pad) / widest.max(1.0)).clamp(1.0, CREDIT_SIZE);
+        let line_h = size + 2.0;
+        let h = CREDIT_LINES.len() as f32 * line_h + 2.0 * pad;
+        let w = (widest * size / CREDIT_SIZE + 2.0 * pad).min(stage.w);
+        let r = crate::ui::Rect::new(stage.x, stage.y + stage.h - h, w, h);
+        ui.fill(r, [0.0, 0.0, 0.0, 0.55]);
+        for (i, line) in CREDIT_LINES.iter().enumerate() {
+            let pos = [r.x + pad, r.y + pad + i as f32 * line_h];
+            ui.label_colored(pos, line, size, DIM);
         }
     }
 

@@ -9,7 +9,8 @@ use std::path::PathBuf;
 
 use glam::Vec3;
 
-use super::{Bot, Game, GameUi, Input, Screen, Settings, Showroom, Swipe};
+use super::showroom::{head_matrix, is_showroom, Subject};
+use super::{Bot, Game, GameUi, Input, Screen, Settings, Showroom, ShowroomHead, Swipe};
 use crate::anim::Pose;
 use crate::asset::Model;
 use crate::camera::{CameraPose, FollowCamera};
@@ -34,6 +35,9 @@ pub enum Key {
     /// Switch the play camera between the wide follow camera and its close-up (the play
     /// screen's "View" button does the same).
     Camera,
+    /// Switch the showroom's subject runner ↔ scanned head where the head is offered (the
+    /// menu's subject option does the same); nothing elsewhere.
+    Subject,
 }
 
 /// The wide follow camera: eye offset and look-at point from the runner's feet (x right, y
@@ -236,6 +240,7 @@ impl Session {
             }
             Key::FrameStats => self.gui.show_frame_stats = !self.gui.show_frame_stats,
             Key::Camera => self.toggle_camera(),
+            Key::Subject => self.gui.set_subject(self.gui.subject().other()),
         }
     }
 
@@ -325,6 +330,7 @@ impl Session {
         let (target, yaw) = camera_target(&self.game, k);
         self.camera
             .update(camera_dt, target, yaw, &CHARACTER.capsule_at(feet, 1.0));
+        self.showroom.set_subject(self.shown_subject());
         self.showroom
             .update(camera_dt, &self.game, &self.camera, &self.ui, &viewport);
         let aspect = viewport.width as f32 / viewport.height.max(1) as f32;
@@ -395,19 +401,48 @@ impl Session {
         self.pose.update_world(character);
     }
 
+    /// What the showroom shows this frame: the head where it is offered, chosen and the
+    /// menu is up; else the runner.
+    pub fn shown_subject(&self) -> Subject {
+        if is_showroom(self.game.screen()) {
+            self.gui.subject()
+        } else {
+            Subject::Runner
+        }
+    }
+
     /// Writes this frame's GPU data: joint palettes, frame uniform, props, UI (if changed).
+    /// `head`: the showroom's scanned head where it was loaded, drawn instead of the runner
+    /// while the showroom shows it.
     pub fn upload(
         &mut self,
         queue: &wgpu::Queue,
         renderer: &mut Renderer,
         ui: &mut UiRenderer,
         character: &Model,
+        head: Option<&ShowroomHead>,
     ) {
         let aspect = self.viewport.width as f32 / self.viewport.height.max(1) as f32;
         self.uploads = 1;
-        if self.character_visible {
-            renderer.update_character(queue, character, &self.pose, self.game.player_matrix());
-            self.uploads += 1;
+        match head.filter(|_| self.showroom.subject() == Subject::Head) {
+            Some(head) => {
+                renderer.select_subject(head.slot);
+                let (feet, _) = self.game.player_transform();
+                renderer.update_character(queue, &head.model, &head.pose, head_matrix(feet));
+                self.uploads += 1;
+            }
+            None => {
+                renderer.select_subject(0);
+                if self.character_visible {
+                    renderer.update_character(
+                        queue,
+                        character,
+                        &self.pose,
+                        self.game.player_matrix(),
+                    );
+                    self.uploads += 1;
+                }
+            }
         }
         renderer.prepare(
             queue,
@@ -427,12 +462,13 @@ impl Session {
         }
     }
 
-    /// What to draw: the character with this frame's tier ([`Session::drawn_model`]).
+    /// What to draw: the character with this frame's tier ([`Session::drawn_model`]); the
+    /// scanned head alone, on the clear background, while the showroom shows it.
     pub fn draw_set(&self) -> DrawSet {
         DrawSet {
             shading: Some(self.drawn_model()),
             character: true,
-            props: true,
+            props: self.showroom.subject() != Subject::Head,
         }
     }
 }

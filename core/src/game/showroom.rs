@@ -7,14 +7,20 @@
 //! panel leaves free ([`super::menu::menu_layout`]'s `stage`). When a run starts the camera swings round
 //! to the follow camera in [`BLEND_S`] (and back when the menu returns); with the blend done
 //! the follow camera is drawn unchanged. Everything here is plain arithmetic: no allocation.
+//!
+//! Its subject is the runner or, where the scanned head was loaded (the desktop; the APK does
+//! not carry it), the head ([`Subject::Head`]): placed where the runner's head would be
+//! ([`head_matrix`]), framed close up, the key light orbiting it at the same distance as the
+//! runner's chest, so the terminator sweeps across the face.
 
 use std::f32::consts::{PI, TAU};
 
-use glam::{Vec2, Vec3};
+use glam::{Mat4, Vec2, Vec3};
 
 use super::menu::layout_for;
 use super::{Game, Screen, Viewport};
 use crate::camera::{CameraPose, FollowCamera};
+use crate::face::head::HEAD_CENTRE;
 use crate::render::rig::{key_light, CHARACTER, KEY_LIGHT_OFFSET};
 use crate::ui::{Rect, Ui};
 
@@ -37,6 +43,48 @@ pub const BUST_HI: Vec3 = Vec3::new(0.3, 1.8, 0.2);
 /// Where the camera looks from, towards the character's front (+z): Fig. 1/2's direction
 /// (`scene::frame_bounds`), a little to its left and above.
 const VIEW_DIR: Vec3 = Vec3::new(0.35, 0.12, 1.0);
+
+/// What the showroom shows.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Subject {
+    /// The game's runner (its head and torso).
+    #[default]
+    Runner,
+    /// The scanned head (`face::head`, CC BY 3.0: its credit is shown with it).
+    Head,
+}
+
+impl Subject {
+    /// The menu option's text.
+    pub fn label(self) -> &'static str {
+        match self {
+            Subject::Runner => "Subject: runner",
+            Subject::Head => "Subject: head",
+        }
+    }
+
+    /// The other subject (the menu option toggles).
+    pub fn other(self) -> Self {
+        match self {
+            Subject::Runner => Subject::Head,
+            Subject::Head => Subject::Runner,
+        }
+    }
+}
+
+/// The height of the head's centre (between the ears, at the eyes) above the feet: where
+/// the runner's head is.
+pub const HEAD_HEIGHT: f32 = 1.6;
+/// The box the head's close-up frames, around its centre (m): crown to chin, ear to ear,
+/// the back of the head to the nose (the shoulders below are cut).
+pub const HEAD_LO: Vec3 = Vec3::new(-0.1, -0.13, -0.1);
+pub const HEAD_HI: Vec3 = Vec3::new(0.1, 0.115, 0.13);
+
+/// Where the scanned head (in its own metres, `face::head::load`) stands for a runner at
+/// `feet`: its centre [`HEAD_HEIGHT`] above them, facing +z like the runner.
+pub fn head_matrix(feet: Vec3) -> Mat4 {
+    Mat4::from_translation(feet + Vec3::Y * HEAD_HEIGHT - HEAD_CENTRE)
+}
 
 /// Whether `screen` shows the showroom (the main menu, with the model option).
 pub fn is_showroom(screen: Screen) -> bool {
@@ -68,6 +116,30 @@ pub fn framing(feet: Vec3, aspect: f32, stage: Rect) -> CameraPose {
     }
 }
 
+/// The showroom camera for the scanned head of a runner at `feet` ([`head_matrix`]): the
+/// sphere around the box [`HEAD_LO`]..[`HEAD_HI`] filling [`FILL`] of `stage`'s height or
+/// [`FILL_W`] of its width (a sphere, since at arm's length the box's near corners would
+/// reach past a box fitted by its faces), centred on it by a lens shift.
+pub fn head_framing(feet: Vec3, aspect: f32, stage: Rect) -> CameraPose {
+    let centre = feet + Vec3::Y * HEAD_HEIGHT + (HEAD_LO + HEAD_HI) * 0.5;
+    let radius = 0.5 * (HEAD_HI - HEAD_LO).length();
+    let fov_y = FOV_Y_DEG.to_radians();
+    let t = (fov_y * 0.5).tan();
+    // The half-angles the stage spans around its centre, vertically and horizontally.
+    let up = (t * stage.h.max(0.1) * FILL).atan();
+    let across = (t * aspect.max(1e-3) * stage.w.max(0.1) * FILL_W).atan();
+    let d = radius / up.min(across).sin();
+    let c = stage.center();
+    CameraPose {
+        eye: centre + VIEW_DIR.normalize() * d,
+        look: centre,
+        fov_y,
+        shift: Vec2::new(2.0 * c[0] - 1.0, 1.0 - 2.0 * c[1]),
+        near: 0.05,
+        far: 200.0,
+    }
+}
+
 /// How much slower the light turns in front of the character than behind it (0: uniform).
 const LIGHT_EASE: f32 = 0.6;
 
@@ -84,6 +156,14 @@ pub fn orbit_light(feet: Vec3, time: f32) -> Vec3 {
     // Monotonic for LIGHT_EASE < 1: d/dphase = 1 − ease·cos(phase) > 0.
     let a = KEY_LIGHT_OFFSET.x.atan2(KEY_LIGHT_OFFSET.z) + phase - LIGHT_EASE * phase.sin();
     feet + Vec3::new(radius * a.sin(), LIGHT_HEIGHT, radius * a.cos())
+}
+
+/// The orbiting key light for the scanned head of a runner at `feet`: [`orbit_light`]'s
+/// turn about the head's centre instead of the chest, at the same distance and height above
+/// it (the face gets the irradiance the chest gets in play).
+pub fn head_orbit_light(feet: Vec3, time: f32) -> Vec3 {
+    let chest = Vec3::Y * CHARACTER.chest;
+    orbit_light(feet, time) - chest + Vec3::Y * HEAD_HEIGHT
 }
 
 /// Interpolates two cameras by `t`, the eye swinging around `centre` (angle, radius and
@@ -129,6 +209,8 @@ pub struct Showroom {
     light_time: f32,
     view: CameraPose,
     light: Vec3,
+    /// What it shows (set by the session each frame).
+    subject: Subject,
 }
 
 impl Showroom {
@@ -139,7 +221,18 @@ impl Showroom {
             light_time: 0.0,
             view: follow.pose(),
             light: key_light(Vec3::ZERO).position,
+            subject: Subject::Runner,
         }
+    }
+
+    /// Shows `subject` from the next [`Showroom::update`] on.
+    pub fn set_subject(&mut self, subject: Subject) {
+        self.subject = subject;
+    }
+
+    /// What it shows.
+    pub fn subject(&self) -> Subject {
+        self.subject
     }
 
     /// Advances `dt` seconds and places this frame's camera and key light: the showroom's on
@@ -177,10 +270,19 @@ impl Showroom {
             s.h / screen.h,
         );
         let aspect = viewport.width.max(1) as f32 / viewport.height.max(1) as f32;
-        let close = framing(feet, aspect, stage);
+        let (close, orbit) = match self.subject {
+            Subject::Runner => (
+                framing(feet, aspect, stage),
+                orbit_light(feet, self.light_time),
+            ),
+            Subject::Head => (
+                head_framing(feet, aspect, stage),
+                head_orbit_light(feet, self.light_time),
+            ),
+        };
         let t = self.weight * self.weight * (3.0 - 2.0 * self.weight);
         self.view = orbit_lerp(&follow.pose(), &close, t, feet);
-        self.light = key.lerp(orbit_light(feet, self.light_time), t);
+        self.light = key.lerp(orbit, t);
     }
 
     /// The camera drawn this frame.

@@ -1,5 +1,6 @@
 //! GPU resources of the skinned character: meshes, one joint palette per skin, base-colour
-//! bind groups and one parameter buffer per shading model. Created once at load.
+//! and normal-map bind groups and one parameter buffer per shading model. Created once at
+//! load.
 
 use glam::Mat4;
 
@@ -9,6 +10,10 @@ use super::texture;
 use crate::anim::{joint_palette, Pose};
 use crate::asset::{Model, MAX_JOINTS};
 use crate::shading::{Lut, Material, ModelParams, ShadingModel};
+
+/// The normal map of a primitive without one: the flat normal, alpha 0 ("no map": the
+/// shader keeps the interpolated vertex normal bit for bit).
+pub const FLAT_NORMAL: [u8; 4] = [128, 128, 255, 0];
 
 struct Part {
     mesh: GpuMesh,
@@ -66,6 +71,8 @@ impl CharacterGpu {
             })
             .collect();
         let white = texture::solid(device, queue, [255, 255, 255, 255], true);
+        // No normal map: alpha 0 tells the shader to keep the vertex normal exactly.
+        let flat = texture::solid(device, queue, FLAT_NORMAL, false);
         for node in &model.nodes {
             let (Some(mesh), Some(skin)) = (node.mesh, node.skin) else {
                 continue;
@@ -92,6 +99,10 @@ impl CharacterGpu {
                     .and_then(|m| m.base_color_texture)
                     .and_then(|t| textures.get(t))
                     .unwrap_or(&white);
+                let normal_map = material
+                    .and_then(|m| m.normal_texture)
+                    .and_then(|t| textures.get(t))
+                    .unwrap_or(&flat);
                 let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
                     label: Some("character part"),
                     layout: &layouts.skinned,
@@ -107,6 +118,10 @@ impl CharacterGpu {
                         wgpu::BindGroupEntry {
                             binding: 2,
                             resource: wgpu::BindingResource::Sampler(sampler),
+                        },
+                        wgpu::BindGroupEntry {
+                            binding: 3,
+                            resource: wgpu::BindingResource::TextureView(normal_map),
                         },
                     ],
                 });

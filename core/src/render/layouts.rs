@@ -1,7 +1,7 @@
 //! Bind group layouts, created once.
 
 /// Group 0: the frame uniform and the shadow map. Group 1: a shading model's parameters (and LUT). Group 2: the skinned
-/// object (joint palette, base colour, sampler). Props: group 1 is their material.
+/// object (joint palette, base colour, sampler, tangent-space normal map). Props: group 1 is their material.
 pub struct Layouts {
     pub frame: wgpu::BindGroupLayout,
     pub model: wgpu::BindGroupLayout,
@@ -107,6 +107,7 @@ impl Layouts {
                     uniform(0, wgpu::ShaderStages::VERTEX),
                     texture(1),
                     sampler(2),
+                    texture(3),
                 ],
             ),
             prop_material: make(

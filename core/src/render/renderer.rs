@@ -68,6 +68,12 @@ pub struct Renderer {
     /// The loaded character's bounding sphere in its own space (centre, radius).
     character_bound: (Vec3, f32),
     character: Option<CharacterGpu>,
+    /// Subjects uploaded beside the character (the showroom's scanned head), each with its
+    /// bounding sphere; slot 0 is the character's. The one drawn sits in `character` and
+    /// `character_bound` (its slot empty): [`Renderer::select_subject`] swaps, creating nothing.
+    subjects: Vec<Subject>,
+    /// The slot in `character` now.
+    active_subject: usize,
     props: Vec<PropGpu>,
     /// Scratch for grouping prop instances by kind (reused, no per-frame allocation).
     scratch: Vec<[[f32; 4]; 4]>,
@@ -171,6 +177,8 @@ impl Renderer {
             character_world: Mat4::IDENTITY,
             character_bound: CHARACTER.sphere_at(Vec3::ZERO),
             character: None,
+            subjects: Vec::new(),
+            active_subject: 0,
             props: Vec::new(),
             scratch: Vec::with_capacity(MAX_INSTANCES as usize),
             casters: Casters::default(),
@@ -201,6 +209,7 @@ impl Renderer {
             model,
             &models,
         )?;
+        self.select_subject(0);
         self.character = Some(character);
         self.casters.character = Some(CHARACTER);
         self.character_bound = model_sphere(model).unwrap_or(CHARACTER.sphere_at(Vec3::ZERO));
@@ -209,6 +218,62 @@ impl Renderer {
         }
         self.set_material(&gpu.queue, material);
         Ok(())
+    }
+
+    /// Uploads another subject beside the character (at load: the showroom's scanned head)
+    /// with `material`'s constants; returns its slot for [`Renderer::select_subject`] (the
+    /// character is slot 0). The character stays the one drawn.
+    pub fn add_subject(
+        &mut self,
+        gpu: &Gpu,
+        model: &Model,
+        material: &Material,
+    ) -> Result<usize, String> {
+        let models = self.pipelines.character.built().models;
+        let subject = CharacterGpu::new(
+            &gpu.device,
+            &gpu.queue,
+            &self.layouts,
+            &self.sampler,
+            model,
+            &models,
+        )?;
+        subject.set_material(&gpu.queue, material);
+        if self.subjects.is_empty() {
+            self.subjects.push(Subject::default());
+        }
+        self.subjects.push(Subject {
+            gpu: Some(subject),
+            bound: model_sphere(model).unwrap_or(CHARACTER.sphere_at(Vec3::ZERO)),
+        });
+        if self.shadow_map.is_none() {
+            self.ensure_shadow_map(gpu, SHADOW_MAP_SIZE);
+        }
+        Ok(self.subjects.len() - 1)
+    }
+
+    /// Draws the subject in `slot` (0: the character) from now on; its pose comes from the
+    /// next [`Renderer::update_character`]. An unknown slot leaves the one drawn. Creates
+    /// nothing (the subjects' resources swap places).
+    pub fn select_subject(&mut self, slot: usize) {
+        let known = self.subjects.get(slot).is_some_and(|s| s.gpu.is_some());
+        if slot == self.active_subject || !known {
+            return;
+        }
+        let old = self.active_subject;
+        self.subjects[old] = Subject {
+            gpu: self.character.take(),
+            bound: self.character_bound,
+        };
+        let new = std::mem::take(&mut self.subjects[slot]);
+        self.character = new.gpu;
+        self.character_bound = new.bound;
+        self.active_subject = slot;
+    }
+
+    /// The subject drawn now (0: the character).
+    pub fn subject(&self) -> usize {
+        self.active_subject
     }
 
     /// Builds the key light's shadow map (once, or again at another size) and binds it to
@@ -296,6 +361,9 @@ impl Renderer {
     /// Recomputes the character's shading constants (and subsurface kernels) for `material`.
     pub fn set_material(&self, queue: &wgpu::Queue, material: &Material) {
         if let Some(c) = &self.character {
+            c.set_material(queue, material);
+        }
+        for c in self.subjects.iter().filter_map(|s| s.gpu.as_ref()) {
             c.set_material(queue, material);
         }
         if let Some(sss) = &self.sss {
@@ -646,6 +714,13 @@ impl Renderer {
         }
         stats
     }
+}
+
+/// A subject's GPU resources and bounding sphere in its own space (centre, radius).
+#[derive(Default)]
+struct Subject {
+    gpu: Option<CharacterGpu>,
+    bound: (Vec3, f32),
 }
 
 /// How much a pose may reach beyond the bind pose's bounding sphere (arms, a jump's tuck).

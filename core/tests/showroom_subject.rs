@@ -1,0 +1,167 @@
+//! The showroom's subject option (CPU side): absent without the scanned head (the APK, a bad
+//! or missing head), present with it — in the showroom's corner, a click swaps the subject —
+//! and the head, once shown, is framed inside the stage with its credit beside it, lit by
+//! the orbiting key light from the chest's distance in play; a run shows the runner again.
+
+use std::path::Path;
+
+use dermis_core::face::head::{CREDIT_LINES, HEAD_CENTRE};
+use dermis_core::game::menu;
+use dermis_core::game::showroom::{self, head_matrix, HEAD_HI, HEAD_LO};
+use dermis_core::game::{Key, Screen, Session, Subject, Viewport};
+use dermis_core::render::rig::{key_light, CHARACTER};
+use dermis_core::scene::SceneAssets;
+use dermis_core::ui::{Insets, Rect};
+use glam::{Vec3, Vec4Swizzles};
+
+const FRAME: f32 = 1.0 / 60.0;
+
+fn viewports() -> [Viewport; 3] {
+    let vp = |width, height, scale| Viewport {
+        width,
+        height,
+        scale,
+        insets: Insets::ZERO,
+    };
+    [vp(1280, 720, 1.0), vp(640, 360, 1.0), vp(1080, 2340, 2.75)]
+}
+
+fn inside(a: &Rect, b: &Rect) -> bool {
+    a.x >= b.x - 0.01
+        && a.y >= b.y - 0.01
+        && a.x + a.w <= b.x + b.w + 0.01
+        && a.y + a.h <= b.y + b.h + 0.01
+}
+
+/// The screen rectangle (logical units) of the box `lo..hi` (world) as the session draws it.
+fn on_screen(s: &Session, vp: &Viewport, lo: Vec3, hi: Vec3) -> Rect {
+    let aspect = vp.width as f32 / vp.height as f32;
+    let m = s.view().view_proj(aspect);
+    let (w, h) = (vp.width as f32 / vp.scale, vp.height as f32 / vp.scale);
+    let (mut a, mut b) = ([f32::MAX; 2], [f32::MIN; 2]);
+    for i in 0..8 {
+        let c = Vec3::new(
+            if i & 1 == 0 { lo.x } else { hi.x },
+            if i & 2 == 0 { lo.y } else { hi.y },
+            if i & 4 == 0 { lo.z } else { hi.z },
+        );
+        let p = m * c.extend(1.0);
+        assert!(p.w > 0.0);
+        let ndc = p.xy() / p.w;
+        let (x, y) = ((ndc.x + 1.0) * 0.5 * w, (1.0 - ndc.y) * 0.5 * h);
+        a = [a[0].min(x), a[1].min(y)];
+        b = [b[0].max(x), b[1].max(y)];
+    }
+    Rect::new(a[0], a[1], b[0] - a[0], b[1] - a[1])
+}
+
+fn credit_shown(s: &Session) -> bool {
+    s.ui.label_rects().any(|(t, _)| t == CREDIT_LINES[0])
+}
+
+#[test]
+fn without_the_head_there_is_no_subject_option() {
+    let model = dermis_core::asset::shapes::plane_model(0.5, 0.01);
+    let mut s = Session::new(&model, 3, None, false);
+    s.gui.offer_head(false);
+    s.gui.set_subject(Subject::Head);
+    s.key(Key::Subject);
+    for _ in 0..3 {
+        s.update(FRAME, &model, viewports()[0]);
+    }
+    assert_eq!(s.shown_subject(), Subject::Runner);
+    assert_eq!(s.ui.button_rects().count(), 2, "only the model and start");
+    assert!(!credit_shown(&s));
+    assert!(s.draw_set().props);
+}
+
+#[test]
+fn a_missing_head_is_no_head_and_no_panic() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets");
+    let assets = SceneAssets::load(&root, None).unwrap_or_else(|e| panic!("{e}"));
+    assert!(assets.head.is_none(), "the head is only loaded on request");
+    let empty = std::env::temp_dir().join(format!("dermis-no-head-{}", std::process::id()));
+    std::fs::create_dir_all(&empty).unwrap();
+    assert!(assets.with_head(&empty).head.is_none());
+    // A head folder holding a broken mesh.
+    std::fs::create_dir_all(empty.join("head")).unwrap();
+    std::fs::write(empty.join("head/LeePerrySmith.glb"), b"glTF not really").unwrap();
+    let assets = SceneAssets::load(&root, None).unwrap();
+    assert!(assets.with_head(&empty).head.is_none());
+    std::fs::remove_dir_all(&empty).unwrap();
+}
+
+#[test]
+fn the_head_option_swaps_the_subject_framed_in_the_stage_with_its_credit() {
+    let model = dermis_core::asset::shapes::plane_model(0.5, 0.01);
+    for vp in viewports() {
+        let mut s = Session::new(&model, 3, None, false);
+        s.gui.offer_head(true);
+        s.update(FRAME, &model, vp);
+        assert_eq!(s.shown_subject(), Subject::Runner);
+        assert_eq!(s.ui.button_rects().count(), 3, "{vp:?}");
+        let (_, layout) = menu::layout_for(&s.ui, &vp);
+        let option = s.ui.button_rects().nth(2).unwrap();
+        assert!(inside(&option, &layout.stage), "{vp:?}: {option:?}");
+        assert!(!credit_shown(&s));
+        // A click (physical pixels) on the option.
+        let c = option.center();
+        let (x, y) = (c[0] * vp.scale, c[1] * vp.scale);
+        s.pointer_down(x, y);
+        s.pointer_up(x, y);
+        s.update(FRAME, &model, vp);
+        assert_eq!(s.gui.subject(), Subject::Head);
+        // The frame after the click shows it (the showroom reads the choice first).
+        s.update(FRAME, &model, vp);
+        assert_eq!(s.shown_subject(), Subject::Head);
+        assert!(!s.draw_set().props);
+        assert!(credit_shown(&s), "{vp:?}: the head without its credit");
+        for (text, r) in s.ui.label_rects() {
+            if CREDIT_LINES.contains(&text) {
+                assert!(inside(&r, &layout.stage), "{vp:?}: credit {r:?} outside");
+            }
+        }
+        // Framed inside the stage, large.
+        let (feet, _) = s.game.player_transform();
+        let centre = head_matrix(feet).transform_point3(HEAD_CENTRE);
+        assert!((centre - (feet + Vec3::Y * showroom::HEAD_HEIGHT)).length() < 1e-5);
+        let r = on_screen(&s, &vp, centre + HEAD_LO, centre + HEAD_HI);
+        assert!(
+            inside(&r, &layout.stage),
+            "{vp:?}: head {r:?} vs {:?}",
+            layout.stage
+        );
+        assert!(
+            r.h > 0.5 * layout.stage.h || r.w > 0.5 * layout.stage.w,
+            "{vp:?}: head {r:?} small in {:?}",
+            layout.stage
+        );
+        // The key light orbits the head at the distance the play key light is from the chest.
+        let reach = (key_light(feet).position - CHARACTER.chest_at(feet)).length();
+        let mut angles = Vec::new();
+        for _ in 0..240 {
+            s.update(FRAME, &model, vp);
+            let d = s.light.position - centre;
+            assert!(
+                (d.length() - reach).abs() < 1e-3,
+                "{} vs {reach}",
+                d.length()
+            );
+            assert!(d.y > 0.0, "the light below the head");
+            angles.push(d.x.atan2(d.z));
+        }
+        let turned = angles.last().unwrap() - angles[0];
+        assert!(turned.abs() > 0.3, "the light turned {turned} rad in 4 s");
+        // The H key switches back and forth, as the option does.
+        s.key(Key::Subject);
+        assert_eq!(s.gui.subject(), Subject::Runner);
+        s.key(Key::Subject);
+        assert_eq!(s.gui.subject(), Subject::Head);
+        // A run shows the runner (with the props) again.
+        s.game.start();
+        s.update(FRAME, &model, vp);
+        assert_eq!(s.game.screen(), Screen::Play);
+        assert_eq!(s.shown_subject(), Subject::Runner);
+        assert!(s.draw_set().props && !credit_shown(&s));
+    }
+}
