@@ -8,7 +8,7 @@
 use std::path::PathBuf;
 use std::sync::Arc;
 
-use dermis_core::game::{GameFrame, GameGpu, Key as GameKey, Session};
+use dermis_core::app::{GameFrame, GameGpu, Key as GameKey, Session};
 use dermis_core::lifecycle::FrameStatus;
 use dermis_core::render::{
     FrameDriver, FrameOutput, Gpu, Output, Renderer, SurfaceOptions, SurfaceTarget,

@@ -9,7 +9,7 @@
 use std::path::Path;
 use std::process::Command;
 
-use dermis_core::game::{Key, Session};
+use dermis_core::app::{Key, Session};
 use dermis_core::render::Gpu;
 use dermis_core::scene::SceneAssets;
 use dermis_core::shader::{compose, modules};

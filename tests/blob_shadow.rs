@@ -9,8 +9,8 @@ mod common;
 use std::path::Path;
 
 use common::Rig;
+use dermis_core::app::Key;
 use dermis_core::camera::look_at;
-use dermis_core::game::Key;
 use dermis_core::governor::GovernorConfig;
 use dermis_core::render::{
     key_light, FrameView, Gpu, RgbaImage, EXPOSURE, OFFSCREEN_FORMAT, SHADOW_MAP_SIZE,

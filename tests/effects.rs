@@ -3,7 +3,8 @@
 
 use std::path::Path;
 
-use dermis_core::game::{GameFrame, GameGpu, Screen, Session};
+use dermis_core::app::{GameFrame, GameGpu, Session};
+use dermis_core::game::Screen;
 use dermis_core::render::{
     Clock, FrameDriver, Gpu, LiveObjects, Offscreen, Output, PipelineSet, OFFSCREEN_FORMAT,
 };

@@ -6,7 +6,8 @@
 
 use std::path::Path;
 
-use dermis_core::game::{GameFrame, GameGpu, Screen, Session, Subject};
+use dermis_core::app::{GameFrame, GameGpu, Session, Subject};
+use dermis_core::game::Screen;
 use dermis_core::render::{
     Clock, FrameDriver, Gpu, LiveObjects, Offscreen, Output, OFFSCREEN_FORMAT,
 };

@@ -6,7 +6,7 @@
 use std::path::Path;
 use std::process::Command;
 
-use dermis_core::game::{GameGpu, Session, Viewport};
+use dermis_core::app::{GameGpu, Session, Viewport};
 use dermis_core::lifecycle::{Action, Event, Lifecycle};
 use dermis_core::render::{FrameStatus, Gpu, LiveObjects, Offscreen, OFFSCREEN_FORMAT};
 use dermis_core::scene::SceneAssets;

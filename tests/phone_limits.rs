@@ -8,7 +8,7 @@
 use std::path::Path;
 use std::sync::{Arc, Mutex};
 
-use dermis_core::game::{GameFrame, GameGpu, Session};
+use dermis_core::app::{GameFrame, GameGpu, Session};
 use dermis_core::render::{Clock, FrameDriver, Gpu, Offscreen, Output, OFFSCREEN_FORMAT};
 use dermis_core::scene::SceneAssets;
 use dermis_core::shading::{material::SKIN1, ShadingModel};

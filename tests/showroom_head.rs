@@ -10,8 +10,9 @@ mod common;
 use std::path::Path;
 
 use common::Rig;
+use dermis_core::app::{GameGpu, Subject};
 use dermis_core::face::head::CREDIT_LINES;
-use dermis_core::game::{GameGpu, Screen, Subject};
+use dermis_core::game::Screen;
 use dermis_core::render::{LiveObjects, Offscreen, RgbaImage};
 use dermis_core::scene::SceneAssets;
 use dermis_core::shading::ShadingModel;

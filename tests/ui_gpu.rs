@@ -137,7 +137,8 @@ fn ui_renders_with_one_draw_call() {
 
 #[test]
 fn game_screens_render() {
-    use dermis_core::game::{Game, GameUi, Screen, Settings, TICK_DT};
+    use dermis_core::app::{GameUi, Settings};
+    use dermis_core::game::{Game, Screen, TICK_DT};
     const SW: u32 = 960;
     const SH: u32 = 540;
     let gpu = Gpu::headless().unwrap_or_else(|e| panic!("{e}"));

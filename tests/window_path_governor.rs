@@ -7,7 +7,7 @@
 use std::path::Path;
 use std::time::{Duration, Instant};
 
-use dermis_core::game::{GameFrame, GameGpu, Session};
+use dermis_core::app::{GameFrame, GameGpu, Session};
 use dermis_core::render::{FrameDriver, Gpu, Offscreen, Output, OFFSCREEN_FORMAT};
 use dermis_core::scene::SceneAssets;
 use dermis_core::shading::ShadingModel;

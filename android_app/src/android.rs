@@ -9,7 +9,7 @@ use crate::lifecycle::{self, Action, Event, Lifecycle};
 use crate::soak::{Soak, SoakConfig};
 use android_activity::input::{InputEvent, KeyAction, Keycode, MotionAction};
 use android_activity::{AndroidApp, InputStatus, MainEvent, PollEvent, WindowManagerFlags};
-use dermis_core::game::{Key, Session};
+use dermis_core::app::{Key, Session};
 use dermis_core::governor::GovernorConfig;
 use dermis_core::shading::ShadingModel;
 use std::time::Instant;

@@ -7,7 +7,8 @@
 //! same [`Session`] loop as the desktop window, the governor choosing the shading tier).
 
 use android_activity::ndk::native_window::NativeWindow;
-use dermis_core::game::{GameFrame, GameGpu, Key, Screen, Session};
+use dermis_core::app::{GameFrame, GameGpu, Key, Session};
+use dermis_core::game::Screen;
 use dermis_core::heap::allocations;
 use dermis_core::render::{
     Clock, FrameDriver, FrameStatus, Gpu, Output, SurfaceOptions, SurfaceTarget,

@@ -14,7 +14,7 @@
 //! 60 fps.
 
 use crate::ndk_dl::{HintSession, Thermal, ThermalSample};
-use dermis_core::game::{soak_sample, Session};
+use dermis_core::app::{soak_sample, Session};
 use dermis_core::render::{FrameTimes, Gpu, LiveObjects};
 use dermis_core::shading::ShadingModel;
 use dermis_core::soak::{

@@ -6,6 +6,7 @@
 //! Android; the desktop app and the Android app are thin shells around it.
 
 pub mod anim;
+pub mod app;
 pub mod asset;
 pub mod camera;
 pub mod face;

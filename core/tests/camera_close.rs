@@ -4,7 +4,8 @@
 //! Play frame keeps its head in view (jumps included), the switch glides rather than cuts,
 //! and the choice is a saved setting.
 
-use dermis_core::game::{Key, Screen, Session, Viewport};
+use dermis_core::app::{Key, Session, Viewport};
+use dermis_core::game::Screen;
 use dermis_core::render::rig::CHARACTER;
 use dermis_core::scene::SceneAssets;
 use dermis_core::ui::Insets;

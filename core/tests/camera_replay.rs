@@ -5,7 +5,8 @@
 //! camera stays above the ground, looking ahead rather than at the floor. (A player once saw
 //! one frame of floor without the character; this is the hunt for that edge case.)
 
-use dermis_core::game::{Screen, Session, Viewport};
+use dermis_core::app::{Session, Viewport};
+use dermis_core::game::Screen;
 use dermis_core::scene::SceneAssets;
 use dermis_core::ui::Insets;
 use std::path::Path;

@@ -7,7 +7,8 @@
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use dermis_core::game::{Bot, Game, GameUi, Screen, Settings};
+use dermis_core::app::{GameUi, Settings};
+use dermis_core::game::{Bot, Game, Screen};
 use dermis_core::render::PropInstance;
 use dermis_core::ui::{Insets, Ui};
 

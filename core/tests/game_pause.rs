@@ -1,7 +1,8 @@
 //! Pause (key, focus loss, the pause panel's Resume button) and the frame-time overlay.
 
+use dermis_core::app::{Key, Session, Viewport};
 use dermis_core::asset::Model;
-use dermis_core::game::{Game, Input, Key, Screen, Session, Viewport, TICK_DT};
+use dermis_core::game::{Game, Input, Screen, TICK_DT};
 use dermis_core::ui::{Insets, Rect};
 
 const FRAME: f32 = 1.0 / 60.0;

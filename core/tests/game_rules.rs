@@ -1,8 +1,7 @@
 //! Game rules: collision, jumping, lanes, score, replay, best score, settings, props, animation.
 
-use dermis_core::game::{
-    Clip, Game, Input, ObstacleKind, Screen, Settings, Swipe, TICK_DT, TICK_HZ,
-};
+use dermis_core::app::Settings;
+use dermis_core::game::{Clip, Game, Input, ObstacleKind, Screen, Swipe, TICK_DT, TICK_HZ};
 use dermis_core::render::{PropInstance, PropKind};
 use dermis_core::shading::ShadingModel;
 

@@ -3,8 +3,9 @@
 //! and every key hint are shown, nothing overlaps anything else, everything is inside the safe
 //! area, and the key hints never cover the character's close-up.
 
-use dermis_core::game::menu::{self, MARGIN};
-use dermis_core::game::{Screen, Session, Viewport};
+use dermis_core::app::menu::{self, MARGIN};
+use dermis_core::app::{Session, Viewport};
+use dermis_core::game::Screen;
 use dermis_core::render::rig::CHARACTER;
 use dermis_core::ui::{Insets, Rect};
 use glam::{Vec3, Vec4Swizzles};
@@ -141,8 +142,8 @@ fn small_screens_show_the_whole_menu_without_overlaps() {
             on_screen(
                 &s,
                 &v,
-                feet + dermis_core::game::showroom::BUST_LO,
-                feet + dermis_core::game::showroom::BUST_HI,
+                feet + dermis_core::app::showroom::BUST_LO,
+                feet + dermis_core::app::showroom::BUST_HI,
             )
         };
         for h in &hints {

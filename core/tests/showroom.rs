@@ -7,10 +7,11 @@
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
 
+use dermis_core::app::menu;
+use dermis_core::app::showroom::{self, BUST_HI, BUST_LO, LIGHT_PERIOD_S};
+use dermis_core::app::{Key, Session, Viewport};
 use dermis_core::asset::Model;
-use dermis_core::game::menu;
-use dermis_core::game::showroom::{self, BUST_HI, BUST_LO, LIGHT_PERIOD_S};
-use dermis_core::game::{Clip, Input, Key, Screen, Session, Viewport};
+use dermis_core::game::{Clip, Input, Screen};
 use dermis_core::render::rig::{key_light, CHARACTER};
 use dermis_core::ui::{Insets, Rect};
 use glam::{Vec3, Vec4Swizzles};

@@ -5,10 +5,11 @@
 
 use std::path::Path;
 
+use dermis_core::app::menu;
+use dermis_core::app::showroom::{self, head_matrix, HEAD_HI, HEAD_LO};
+use dermis_core::app::{Key, Session, Subject, Viewport};
 use dermis_core::face::head::{CREDIT_LINES, HEAD_CENTRE};
-use dermis_core::game::menu;
-use dermis_core::game::showroom::{self, head_matrix, HEAD_HI, HEAD_LO};
-use dermis_core::game::{Key, Screen, Session, Subject, Viewport};
+use dermis_core::game::Screen;
 use dermis_core::render::rig::{key_light, CHARACTER};
 use dermis_core::scene::SceneAssets;
 use dermis_core::ui::{Insets, Rect};

@@ -3,7 +3,8 @@
 
 use std::fmt::Write;
 
-use dermis_core::game::{Game, GameUi, Screen, Settings, TICK_DT};
+use dermis_core::app::{GameUi, Settings};
+use dermis_core::game::{Game, Screen, TICK_DT};
 use dermis_core::shading::ShadingModel;
 use dermis_core::ui::{Anchor, Insets, Rect, Ui, UiVertex};
 

@@ -2,7 +2,8 @@
 //! insets injected (as the Android app reads them over JNI), no button sits under a cutout,
 //! on any screen, in portrait or landscape, at phone densities.
 
-use dermis_core::game::{Game, GameUi, Input, Screen, Settings};
+use dermis_core::app::{GameUi, Settings};
+use dermis_core::game::{Game, Input, Screen};
 use dermis_core::ui::{Insets, Rect, Ui};
 
 /// Draws the game's current screen for one frame and returns its buttons and safe area.

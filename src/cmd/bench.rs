@@ -4,7 +4,7 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use dermis_core::anim::Pose;
-use dermis_core::game::{GameFrame, GameGpu, Session};
+use dermis_core::app::{GameFrame, GameGpu, Session};
 use dermis_core::render::{Clock, DrawSet, FrameDriver, Gpu, Offscreen, Output, OFFSCREEN_FORMAT};
 use dermis_core::scene::SceneAssets;
 use dermis_core::shading::{material::SKIN1, ShadingModel};

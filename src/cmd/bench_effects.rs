@@ -1,7 +1,7 @@
 //! `dermis bench effects`: what each effect-scheduling decision saves, on the runner scene on
 //! autoplay, offscreen, every frame's GPU pass timed ([`TimerRing`]) and waited for.
 
-use dermis_core::game::{GameFrame, GameGpu, Session};
+use dermis_core::app::{GameFrame, GameGpu, Session};
 use dermis_core::governor::{Governor, GovernorConfig, Tiers};
 use dermis_core::render::{Clock, FrameDriver, Gpu, Offscreen, Output, OFFSCREEN_FORMAT};
 use dermis_core::scene::SceneAssets;

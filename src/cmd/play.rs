@@ -2,7 +2,8 @@
 
 use std::path::PathBuf;
 
-use dermis_core::game::{GameFrame, GameGpu, Screen, Session};
+use dermis_core::app::{GameFrame, GameGpu, Session};
+use dermis_core::game::Screen;
 use dermis_core::render::{
     Clock, FrameDriver, FrameOutput, Gpu, LiveObjects, Offscreen, Output, OFFSCREEN_FORMAT,
 };

@@ -46,7 +46,7 @@
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
-use dermis_core::game::{soak_sample, GameFrame, GameGpu, Session};
+use dermis_core::app::{soak_sample, GameFrame, GameGpu, Session};
 use dermis_core::governor::GovernorConfig;
 use dermis_core::heap::allocations;
 use dermis_core::render::{

@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-use dermis_core::game::{GameGpu, Session, Viewport};
+use dermis_core::app::{GameGpu, Session, Viewport};
 use dermis_core::render::{DrawSet, Gpu, Offscreen, RgbaImage, OFFSCREEN_FORMAT};
 use dermis_core::scene::SceneAssets;
 use dermis_core::shading::ShadingModel;

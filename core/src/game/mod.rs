@@ -5,30 +5,18 @@
 //! comes from the game's own [`rng::Pcg32`] seeded from [`Game::new`]'s seed. Obstacles and
 //! map chunks live in fixed-capacity [`Pool`]s and are recycled, so a steady-state frame
 //! allocates nothing. The game only *describes* what to draw (prop placements, the player
-//! transform, the camera target, the animation blend); the app renders it.
+//! transform, the camera target, the animation blend); the app (`crate::app`: the session,
+//! menus, showroom, settings, governor scheduling and the GPU side) renders it. Nothing here
+//! touches the renderer.
 
 mod bot;
-mod frame;
-mod gpu;
 mod input;
-pub mod menu;
 mod player;
 pub mod rng;
-mod screens;
-pub mod session;
-mod settings;
-pub mod showroom;
 pub mod track;
 
 pub use bot::Bot;
-pub use frame::{soak_sample, AfterEncode, GameFrame};
-pub use gpu::{GameGpu, ShowroomHead};
 pub use input::{Input, Swipe};
-pub use menu::MenuLayout;
-pub use screens::{GameUi, UiOutcome};
-pub use session::{FrameInfo, Key, Session, Viewport};
-pub use settings::Settings;
-pub use showroom::{Showroom, Subject};
 pub use track::{Chunk, Obstacle, ObstacleKind, LANE_WIDTH};
 
 use glam::{Mat4, Quat, Vec3};

@@ -10,10 +10,11 @@ use std::path::PathBuf;
 use glam::Vec3;
 
 use super::showroom::{head_matrix, is_showroom, Subject};
-use super::{Bot, Game, GameUi, Input, Screen, Settings, Showroom, ShowroomHead, Swipe};
+use super::{GameUi, Settings, Showroom, ShowroomHead};
 use crate::anim::Pose;
 use crate::asset::Model;
 use crate::camera::{CameraPose, FollowCamera};
+use crate::game::{Bot, Game, Input, Screen, Swipe};
 use crate::governor::{Change, Governor, GovernorConfig, Needs, Tiers};
 use crate::render::rig::{CHARACTER, EXPOSURE};
 use crate::render::{DrawSet, FrameView, Light, PropInstance, Renderer, UiRenderer};

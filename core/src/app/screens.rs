@@ -11,8 +11,9 @@ use std::fmt::Write;
 use std::time::Instant;
 
 use super::showroom::Subject;
-use super::{menu, Game, Screen, Settings};
+use super::{menu, Settings};
 use crate::face::head::CREDIT_LINES;
+use crate::game::{Game, Screen};
 use crate::ui::{Anchor, Color, Ui};
 
 const TITLE: Color = [1.0, 0.86, 0.45, 1.0];

@@ -5,9 +5,10 @@
 //! here too, beside the runner, for the showroom: showing it swaps what is drawn and creates
 //! nothing.
 
-use super::{Screen, Session};
+use super::Session;
 use crate::anim::Pose;
 use crate::asset::Model;
+use crate::game::Screen;
 use crate::render::{Gpu, PipelineSet, RenderStats, Renderer, Targets, UiRenderer, MSAA_SAMPLES};
 use crate::scene::SceneAssets;
 use crate::shading::material::SKIN1;

@@ -18,9 +18,10 @@ use std::f32::consts::{PI, TAU};
 use glam::{Mat4, Vec2, Vec3};
 
 use super::menu::layout_for;
-use super::{Game, Screen, Viewport};
+use super::Viewport;
 use crate::camera::{CameraPose, FollowCamera};
 use crate::face::head::HEAD_CENTRE;
+use crate::game::{Game, Screen};
 use crate::render::rig::{key_light, CHARACTER, KEY_LIGHT_OFFSET};
 use crate::ui::{Rect, Ui};
 
