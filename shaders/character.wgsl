@@ -8,9 +8,11 @@
 
 @group(2) @binding(1) var base_color: texture_2d<f32>;
 @group(2) @binding(2) var base_sampler: sampler;
+#ifdef NORMAL_MAP
 // Tangent-space normal map (rgb = (xyz + 1) / 2, +y toward decreasing v); alpha 0: none (the
-// flat default of meshes without one).
+// flat default of a part without one). Only in the pipelines of meshes that have one.
 @group(2) @binding(3) var normal_map: texture_2d<f32>;
+#endif
 
 struct VertexIn {
     @location(0) position: vec3<f32>,
@@ -45,6 +47,7 @@ fn vs_main(v: VertexIn) -> VertexOut {
     return out;
 }
 
+#ifdef NORMAL_MAP
 // The shading normal: the normal map's, in the interpolated tangent frame (the bitangent
 // points toward increasing v, so the map's +y is −b); without a map, the vertex normal as it is.
 fn shading_normal(in: VertexOut) -> vec3<f32> {
@@ -57,6 +60,12 @@ fn shading_normal(in: VertexOut) -> vec3<f32> {
     let mapped = safe_normalize(t * k.x - b * k.y + n * k.z, n);
     return select(in.normal, mapped, m.a > 0.5);
 }
+#else
+// A mesh without a normal map: the vertex normal.
+fn shading_normal(in: VertexOut) -> vec3<f32> {
+    return in.normal;
+}
+#endif
 
 fn surface_at(in: VertexOut, albedo: vec3<f32>) -> Surface {
     var s = make_surface(in.world_pos, shading_normal(in), in.tangent, albedo, in.thickness);

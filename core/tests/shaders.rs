@@ -17,6 +17,13 @@ fn all_shaders() -> Vec<(String, String)> {
             )
         })
         .collect();
+    // A mesh with a normal map (the scanned head) gets each model's NORMAL_MAP variant.
+    out.extend(ShadingModel::ALL.iter().map(|m| {
+        (
+            format!("character/{}/normal-map", m.name()),
+            compose("character", &m.defs().flag("NORMAL_MAP")).unwrap(),
+        )
+    }));
     let unlit = ShaderDefs::new().alias("shading_model", "unlit");
     out.push((
         "character/unlit".into(),

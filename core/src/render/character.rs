@@ -44,6 +44,8 @@ pub struct CharacterGpu {
     unlit_params: wgpu::BindGroup,
     /// Triangles drawn per frame.
     pub triangles: u32,
+    /// Some part has a normal map: drawn with the normal-mapped pipelines.
+    pub normal_mapped: bool,
 }
 
 impl CharacterGpu {
@@ -62,6 +64,7 @@ impl CharacterGpu {
         let mut skins: Vec<SkinGpu> = Vec::new();
         let mut parts = Vec::new();
         let mut triangles = 0;
+        let mut normal_mapped = false;
         let textures: Vec<wgpu::TextureView> = model
             .textures
             .iter()
@@ -99,10 +102,11 @@ impl CharacterGpu {
                     .and_then(|m| m.base_color_texture)
                     .and_then(|t| textures.get(t))
                     .unwrap_or(&white);
-                let normal_map = material
+                let mapped = material
                     .and_then(|m| m.normal_texture)
-                    .and_then(|t| textures.get(t))
-                    .unwrap_or(&flat);
+                    .and_then(|t| textures.get(t));
+                normal_mapped |= mapped.is_some();
+                let normal_map = mapped.unwrap_or(&flat);
                 let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
                     label: Some("character part"),
                     layout: &layouts.skinned,
@@ -200,6 +204,7 @@ impl CharacterGpu {
             params,
             unlit_params,
             triangles,
+            normal_mapped,
         })
     }
 

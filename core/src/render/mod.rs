@@ -36,7 +36,7 @@ pub use gpu::{Gpu, GpuError};
 pub use layouts::shadow_map_entries;
 pub use offscreen::{f16_to_f32, Offscreen, RgbaImage, OFFSCREEN_FORMAT};
 pub use penumbra::{grid_texture as penumbra_grid_texture, jump_steps, BLOCK as PENUMBRA_BLOCK};
-pub use pipelines::{build_shader_source, CharacterPipelines, PipelineSet};
+pub use pipelines::{build_shader_source, shader_source, CharacterPipelines, PipelineSet};
 pub use props::{PropInstance, PropKind};
 pub use readback::{read_buffer, read_mapped};
 pub use renderer::{DrawSet, FrameView, RenderStats, Renderer};

@@ -12,9 +12,20 @@ use super::targets::{depth_state, multisample, MSAA_SAMPLES};
 use crate::shader::{compose, ShaderDefs};
 use crate::shading::ShadingModel;
 
-/// The composed WGSL of the character shader for `model`.
+/// The composed WGSL of the character shader for `model` (a mesh without a normal map).
 pub fn build_shader_source(model: ShadingModel) -> String {
-    compose("character", &model.defs()).expect("built-in shaders compose (checked by tests)")
+    shader_source(model, false)
+}
+
+/// The same for a mesh with a normal map (or without).
+pub fn shader_source(model: ShadingModel, normal_map: bool) -> String {
+    let defs = model.defs();
+    let defs = if normal_map {
+        defs.flag("NORMAL_MAP")
+    } else {
+        defs
+    };
+    compose("character", &defs).expect("built-in shaders compose (checked by tests)")
 }
 
 /// Which character pipelines to build: the shading models a scene can reach (its materials ×
@@ -54,6 +65,11 @@ impl PipelineSet {
 /// A character pipeline for each requested model, plus the unlit baseline if requested.
 pub struct CharacterPipelines {
     models: Vec<(ShadingModel, wgpu::RenderPipeline)>,
+    /// The same models for meshes with a normal map, once one is loaded
+    /// ([`Self::add_normal_mapped`]).
+    normal_mapped: Vec<(ShadingModel, wgpu::RenderPipeline)>,
+    layout: wgpu::PipelineLayout,
+    format: wgpu::TextureFormat,
     unlit: Option<wgpu::RenderPipeline>,
     /// The requested models not yet received from the background builder.
     pending: Vec<ShadingModel>,
@@ -121,7 +137,7 @@ impl CharacterPipelines {
             .name("dermis-pipelines".into())
             .spawn(move || {
                 for m in rest {
-                    let p = model_pipeline(&device, &layout, format, m);
+                    let p = model_pipeline(&device, &layout, format, m, false);
                     if tx.send((m, p)).is_err() {
                         return;
                     }
@@ -138,15 +154,41 @@ impl CharacterPipelines {
         !self.pending.is_empty()
     }
 
-    pub fn get(&self, model: Option<ShadingModel>) -> Option<&wgpu::RenderPipeline> {
+    /// The pipeline drawing `model` (`None`: the unlit baseline) on a mesh with a normal map
+    /// or without.
+    pub fn get(
+        &self,
+        model: Option<ShadingModel>,
+        normal_mapped: bool,
+    ) -> Option<&wgpu::RenderPipeline> {
+        let list = if normal_mapped {
+            &self.normal_mapped
+        } else {
+            &self.models
+        };
         match model {
-            Some(model) => self
-                .models
-                .iter()
-                .find(|(m, _)| *m == model)
-                .map(|(_, p)| p),
+            Some(model) => list.iter().find(|(m, _)| *m == model).map(|(_, p)| p),
             None => self.unlit.as_ref(),
         }
+    }
+
+    /// Builds every requested model's pipeline for meshes with a normal map (once, when the
+    /// first such mesh is loaded: a scene without one has no normal-map code anywhere).
+    pub fn add_normal_mapped(&mut self, device: &wgpu::Device) {
+        if !self.normal_mapped.is_empty() {
+            return;
+        }
+        self.normal_mapped = self
+            .built()
+            .models
+            .into_iter()
+            .map(|m| {
+                (
+                    m,
+                    model_pipeline(device, &self.layout, self.format, m, true),
+                )
+            })
+            .collect();
     }
 
     /// What was requested: built, or being built (in menu order).
@@ -224,7 +266,12 @@ impl Pipelines {
         };
         let models = now
             .iter()
-            .map(|&m| (m, model_pipeline(device, &character_layout, format, m)))
+            .map(|&m| {
+                (
+                    m,
+                    model_pipeline(device, &character_layout, format, m, false),
+                )
+            })
             .collect();
         let pending: Vec<ShadingModel> = set
             .models
@@ -267,6 +314,9 @@ impl Pipelines {
             character: CharacterPipelines {
                 models,
                 unlit,
+                normal_mapped: Vec::new(),
+                layout: character_layout,
+                format,
                 pending,
                 builder,
                 arrivals: None,
@@ -277,22 +327,17 @@ impl Pipelines {
     }
 }
 
-/// The character pipeline of `model`.
+/// The character pipeline of `model`, for meshes with a normal map or without.
 fn model_pipeline(
     device: &wgpu::Device,
     layout: &wgpu::PipelineLayout,
     format: wgpu::TextureFormat,
     model: ShadingModel,
+    normal_map: bool,
 ) -> wgpu::RenderPipeline {
     let split = model.effects().screen_space;
-    character_pipeline(
-        device,
-        layout,
-        format,
-        model.name(),
-        build_shader_source(model),
-        split,
-    )
+    let source = shader_source(model, normal_map);
+    character_pipeline(device, layout, format, model.name(), source, split)
 }
 
 /// A character pipeline from composed WGSL.

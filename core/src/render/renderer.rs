@@ -210,6 +210,9 @@ impl Renderer {
             &models,
         )?;
         self.select_subject(0);
+        if character.normal_mapped {
+            self.pipelines.character.add_normal_mapped(&gpu.device);
+        }
         self.character = Some(character);
         self.casters.character = Some(CHARACTER);
         self.character_bound = model_sphere(model).unwrap_or(CHARACTER.sphere_at(Vec3::ZERO));
@@ -239,6 +242,9 @@ impl Renderer {
             &models,
         )?;
         subject.set_material(&gpu.queue, material);
+        if subject.normal_mapped {
+            self.pipelines.character.add_normal_mapped(&gpu.device);
+        }
         if self.subjects.is_empty() {
             self.subjects.push(Subject::default());
         }
@@ -622,8 +628,8 @@ impl Renderer {
         }
         if draw.character {
             // A model outside the built set is not drawn (and never compiled at run time).
-            let pipeline = self.pipelines.character.get(draw.shading);
             if let Some(c) = &self.character {
+                let pipeline = self.pipelines.character.get(draw.shading, c.normal_mapped);
                 if let (Some(pipeline), Some(group)) = (pipeline, c.params_group(draw.shading)) {
                     pass.set_pipeline(pipeline);
                     pass.set_bind_group(1, group, &[]);
