@@ -89,7 +89,11 @@ fn frame(
         lap = Instant::now();
         ms
     };
-    let assets = SceneAssets::load(&crate::paths::assets_dir(), None).map_err(|e| e.to_string())?;
+    // As the game window loads them: with the showroom's scanned head.
+    let dir = crate::paths::assets_dir();
+    let assets = SceneAssets::load(&dir, None)
+        .map_err(|e| e.to_string())?
+        .with_head(&dir);
     let load_ms = split();
     let gpu = Gpu::headless().map_err(|e| e.to_string())?;
     let device_ms = split();

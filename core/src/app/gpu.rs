@@ -95,9 +95,6 @@ impl GameGpu {
             self.renderer.start_pipeline_builder();
         }
         self.frames += 1;
-        let play = session.game.screen() == Screen::Play;
-        self.renderer
-            .receive_pipelines(session.draw_set().shading, play);
         session.upload(
             queue,
             &mut self.renderer,
@@ -105,6 +102,10 @@ impl GameGpu {
             character,
             self.head.as_ref(),
         );
+        // After the upload: the subject it shows decides which variant is waited for.
+        let play = session.game.screen() == Screen::Play;
+        self.renderer
+            .receive_pipelines(session.draw_set().shading, play);
     }
 
     /// Records the frame's single pass into `encoder`.

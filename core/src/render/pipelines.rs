@@ -62,41 +62,35 @@ impl PipelineSet {
     }
 }
 
-/// A character pipeline for each requested model, plus the unlit baseline if requested.
+/// Which character pipeline: a model, for meshes without a normal map or with one.
+pub type PipelineKey = (ShadingModel, bool);
+
+/// A character pipeline for each requested model (and, once a mesh with a normal map is
+/// loaded, each model's normal-mapped variant), plus the unlit baseline if requested.
 pub struct CharacterPipelines {
-    models: Vec<(ShadingModel, wgpu::RenderPipeline)>,
-    /// The same models for meshes with a normal map, once one is loaded
-    /// ([`Self::add_normal_mapped`]).
-    normal_mapped: Vec<(ShadingModel, wgpu::RenderPipeline)>,
+    built: Vec<(PipelineKey, wgpu::RenderPipeline)>,
     layout: wgpu::PipelineLayout,
     format: wgpu::TextureFormat,
     unlit: Option<wgpu::RenderPipeline>,
-    /// The requested models not yet received from the background builder.
-    pending: Vec<ShadingModel>,
+    /// The requested pipelines not yet received from the background builder.
+    pending: Vec<PipelineKey>,
     /// What the builder needs, until [`Self::start_builder`] spawns it.
-    builder: Option<Builder>,
-    arrivals: Option<mpsc::Receiver<(ShadingModel, wgpu::RenderPipeline)>>,
-}
-
-/// The background builder's inputs.
-struct Builder {
-    device: wgpu::Device,
-    layout: wgpu::PipelineLayout,
-    format: wgpu::TextureFormat,
+    builder: Option<wgpu::Device>,
+    arrivals: Option<mpsc::Receiver<(PipelineKey, wgpu::RenderPipeline)>>,
 }
 
 impl CharacterPipelines {
-    /// Installs the pipelines the background builder has finished; blocks for `need`'s (a
-    /// model about to be drawn) or, with `all`, for every one still pending. A builder that
-    /// died leaves its models without a pipeline (logged; they draw nothing).
-    pub fn receive(&mut self, need: Option<ShadingModel>, all: bool) {
-        if all || need.is_some_and(|m| self.pending.contains(&m)) {
+    /// Installs the pipelines the background builder has finished; blocks for `need`'s (the
+    /// pipeline about to draw) or, with `all`, for every one still pending. A builder that
+    /// died leaves its pipelines unbuilt (logged; their models draw nothing).
+    pub fn receive(&mut self, need: Option<PipelineKey>, all: bool) {
+        let blocking = |pending: &[PipelineKey]| all || need.is_some_and(|k| pending.contains(&k));
+        if blocking(&self.pending) {
             self.start_builder();
         }
         while !self.pending.is_empty() {
             let Some(rx) = &self.arrivals else { break };
-            let block = all || need.is_some_and(|m| self.pending.contains(&m));
-            let got = if block {
+            let got = if blocking(&self.pending) {
                 rx.recv().ok()
             } else {
                 match rx.try_recv() {
@@ -105,40 +99,34 @@ impl CharacterPipelines {
                     Err(mpsc::TryRecvError::Disconnected) => None,
                 }
             };
-            let Some((model, pipeline)) = got else {
+            let Some((key, pipeline)) = got else {
                 log::error!(
                     "pipeline builder stopped; without a pipeline: {:?}",
                     self.pending
                 );
                 self.pending.clear();
-                self.arrivals = None;
                 break;
             };
-            self.pending.retain(|m| *m != model);
-            self.models.push((model, pipeline));
+            self.pending.retain(|k| *k != key);
+            self.built.push((key, pipeline));
         }
         self.arrivals = None;
     }
 
-    /// Starts building the pending models' pipelines on a background thread (once; called
-    /// after the first frame, so the builder does not compete with it).
+    /// Starts building the pending pipelines on a background thread (once; called after the
+    /// first frame, so the builder does not compete with it).
     pub fn start_builder(&mut self) {
-        let Some(Builder {
-            device,
-            layout,
-            format,
-        }) = self.builder.take()
-        else {
+        let Some(device) = self.builder.take() else {
             return;
         };
         let (tx, rx) = mpsc::channel();
-        let rest = self.pending.clone();
+        let (layout, format, rest) = (self.layout.clone(), self.format, self.pending.clone());
         let spawned = std::thread::Builder::new()
             .name("dermis-pipelines".into())
             .spawn(move || {
-                for m in rest {
-                    let p = model_pipeline(&device, &layout, format, m, false);
-                    if tx.send((m, p)).is_err() {
+                for key in rest {
+                    let p = model_pipeline(&device, &layout, format, key);
+                    if tx.send((key, p)).is_err() {
                         return;
                     }
                 }
@@ -149,7 +137,7 @@ impl CharacterPipelines {
         self.arrivals = Some(rx);
     }
 
-    /// Whether some requested model's pipeline is still being built.
+    /// Whether some requested pipeline is still being built.
     pub fn loading(&self) -> bool {
         !self.pending.is_empty()
     }
@@ -161,43 +149,47 @@ impl CharacterPipelines {
         model: Option<ShadingModel>,
         normal_mapped: bool,
     ) -> Option<&wgpu::RenderPipeline> {
-        let list = if normal_mapped {
-            &self.normal_mapped
-        } else {
-            &self.models
-        };
         match model {
-            Some(model) => list.iter().find(|(m, _)| *m == model).map(|(_, p)| p),
+            Some(model) => self
+                .built
+                .iter()
+                .find(|(k, _)| *k == (model, normal_mapped))
+                .map(|(_, p)| p),
             None => self.unlit.as_ref(),
         }
     }
 
-    /// Builds every requested model's pipeline for meshes with a normal map (once, when the
-    /// first such mesh is loaded: a scene without one has no normal-map code anywhere).
+    /// Adds every requested model's pipeline for meshes with a normal map (once, when the
+    /// first such mesh is loaded: a scene without one has no normal-map code anywhere): to
+    /// the background builder's list if it has not started, else built now.
     pub fn add_normal_mapped(&mut self, device: &wgpu::Device) {
-        if !self.normal_mapped.is_empty() {
-            return;
+        let keys: Vec<PipelineKey> = self.built().models.into_iter().map(|m| (m, true)).collect();
+        let missing = |k: &PipelineKey, s: &Self| {
+            !s.pending.contains(k) && !s.built.iter().any(|(b, _)| b == k)
+        };
+        for key in keys {
+            if !missing(&key, self) {
+                continue;
+            }
+            if self.builder.is_some() {
+                self.pending.push(key);
+            } else {
+                let p = model_pipeline(device, &self.layout, self.format, key);
+                self.built.push((key, p));
+            }
         }
-        self.normal_mapped = self
-            .built()
-            .models
-            .into_iter()
-            .map(|m| {
-                (
-                    m,
-                    model_pipeline(device, &self.layout, self.format, m, true),
-                )
-            })
-            .collect();
     }
 
-    /// What was requested: built, or being built (in menu order).
+    /// The models requested for meshes without a normal map: built, or being built (in
+    /// menu order).
     pub fn built(&self) -> PipelineSet {
         let mut models: Vec<ShadingModel> = self
-            .models
+            .built
             .iter()
-            .map(|(m, _)| *m)
+            .map(|(k, _)| *k)
             .chain(self.pending.iter().copied())
+            .filter(|(_, mapped)| !mapped)
+            .map(|(m, _)| m)
             .collect();
         models.sort();
         PipelineSet {
@@ -264,26 +256,21 @@ impl Pipelines {
             Some(m) => vec![m],
             None => set.models.clone(),
         };
-        let models = now
+        let built = now
             .iter()
             .map(|&m| {
-                (
-                    m,
-                    model_pipeline(device, &character_layout, format, m, false),
-                )
+                let key = (m, false);
+                (key, model_pipeline(device, &character_layout, format, key))
             })
             .collect();
-        let pending: Vec<ShadingModel> = set
+        let pending: Vec<PipelineKey> = set
             .models
             .iter()
-            .copied()
             .filter(|m| !now.contains(m))
+            .map(|&m| (m, false))
             .collect();
-        let builder = (!pending.is_empty()).then(|| Builder {
-            device: device.clone(),
-            layout: character_layout.clone(),
-            format,
-        });
+        // Deferred (`first`): the builder starts later, with what is pending then.
+        let builder = first.is_some().then(|| device.clone());
         let unlit = set.unlit.then(|| {
             let src = compose(
                 "character",
@@ -312,9 +299,8 @@ impl Pipelines {
             .then(|| prop(&ShaderDefs::new().flag("SCREEN_SPACE"), true));
         Self {
             character: CharacterPipelines {
-                models,
+                built,
                 unlit,
-                normal_mapped: Vec::new(),
                 layout: character_layout,
                 format,
                 pending,
@@ -332,8 +318,7 @@ fn model_pipeline(
     device: &wgpu::Device,
     layout: &wgpu::PipelineLayout,
     format: wgpu::TextureFormat,
-    model: ShadingModel,
-    normal_map: bool,
+    (model, normal_map): PipelineKey,
 ) -> wgpu::RenderPipeline {
     let split = model.effects().screen_space;
     let source = shader_source(model, normal_map);

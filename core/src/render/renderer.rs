@@ -108,11 +108,14 @@ impl Renderer {
         Self::build(gpu, format, set, Some(first))
     }
 
-    /// Installs the character pipelines built in the background so far; blocks for `need`'s
-    /// (the model about to be drawn) or, with `all`, for every one (before play, where
-    /// nothing may be created).
+    /// Installs the character pipelines built in the background so far; blocks for the one
+    /// that draws `need` on the character shown (the model about to be drawn) or, with `all`,
+    /// for every one (before play, where nothing may be created).
     pub fn receive_pipelines(&mut self, need: Option<ShadingModel>, all: bool) {
-        self.pipelines.character.receive(need, all);
+        let mapped = self.character.as_ref().is_some_and(|c| c.normal_mapped);
+        self.pipelines
+            .character
+            .receive(need.map(|m| (m, mapped)), all);
     }
 
     /// Starts building the other character pipelines in the background (after the first
