@@ -3,8 +3,11 @@
 //! and the head, once shown, is framed inside the stage with its credit beside it, lit by
 //! the orbiting key light from the chest's distance in play; a run shows the runner again.
 
+mod common;
+
 use std::path::Path;
 
+use common::{inside, on_screen};
 use dermis_core::app::menu;
 use dermis_core::app::showroom::{self, head_matrix, HEAD_HI, HEAD_LO};
 use dermis_core::app::{Key, Session, Subject, Viewport};
@@ -12,8 +15,8 @@ use dermis_core::face::head::{CREDIT_LINES, HEAD_CENTRE};
 use dermis_core::game::Screen;
 use dermis_core::render::rig::{key_light, CHARACTER};
 use dermis_core::scene::SceneAssets;
-use dermis_core::ui::{Insets, Rect};
-use glam::{Vec3, Vec4Swizzles};
+use dermis_core::ui::Insets;
+use glam::Vec3;
 
 const FRAME: f32 = 1.0 / 60.0;
 
@@ -25,35 +28,6 @@ fn viewports() -> [Viewport; 3] {
         insets: Insets::ZERO,
     };
     [vp(1280, 720, 1.0), vp(640, 360, 1.0), vp(1080, 2340, 2.75)]
-}
-
-fn inside(a: &Rect, b: &Rect) -> bool {
-    a.x >= b.x - 0.01
-        && a.y >= b.y - 0.01
-        && a.x + a.w <= b.x + b.w + 0.01
-        && a.y + a.h <= b.y + b.h + 0.01
-}
-
-/// The screen rectangle (logical units) of the box `lo..hi` (world) as the session draws it.
-fn on_screen(s: &Session, vp: &Viewport, lo: Vec3, hi: Vec3) -> Rect {
-    let aspect = vp.width as f32 / vp.height as f32;
-    let m = s.view().view_proj(aspect);
-    let (w, h) = (vp.width as f32 / vp.scale, vp.height as f32 / vp.scale);
-    let (mut a, mut b) = ([f32::MAX; 2], [f32::MIN; 2]);
-    for i in 0..8 {
-        let c = Vec3::new(
-            if i & 1 == 0 { lo.x } else { hi.x },
-            if i & 2 == 0 { lo.y } else { hi.y },
-            if i & 4 == 0 { lo.z } else { hi.z },
-        );
-        let p = m * c.extend(1.0);
-        assert!(p.w > 0.0);
-        let ndc = p.xy() / p.w;
-        let (x, y) = ((ndc.x + 1.0) * 0.5 * w, (1.0 - ndc.y) * 0.5 * h);
-        a = [a[0].min(x), a[1].min(y)];
-        b = [b[0].max(x), b[1].max(y)];
-    }
-    Rect::new(a[0], a[1], b[0] - a[0], b[1] - a[1])
 }
 
 fn credit_shown(s: &Session) -> bool {

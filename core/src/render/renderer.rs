@@ -203,8 +203,20 @@ impl Renderer {
         model: &Model,
         material: &Material,
     ) -> Result<(), String> {
+        let character = self.upload_subject(gpu, model)?;
+        self.select_subject(0);
+        self.character = Some(character);
+        self.casters.character = Some(CHARACTER);
+        self.character_bound = model_sphere(model).unwrap_or(CHARACTER.sphere_at(Vec3::ZERO));
+        self.set_material(&gpu.queue, material);
+        Ok(())
+    }
+
+    /// A skinned model's GPU side (constants for the built models), with what drawing it
+    /// needs: the normal-mapped pipelines if it has a normal map, the shadow map.
+    fn upload_subject(&mut self, gpu: &Gpu, model: &Model) -> Result<CharacterGpu, String> {
         let models = self.pipelines.character.built().models;
-        let character = CharacterGpu::new(
+        let subject = CharacterGpu::new(
             &gpu.device,
             &gpu.queue,
             &self.layouts,
@@ -212,18 +224,13 @@ impl Renderer {
             model,
             &models,
         )?;
-        self.select_subject(0);
-        if character.normal_mapped {
+        if subject.normal_mapped {
             self.pipelines.character.add_normal_mapped(&gpu.device);
         }
-        self.character = Some(character);
-        self.casters.character = Some(CHARACTER);
-        self.character_bound = model_sphere(model).unwrap_or(CHARACTER.sphere_at(Vec3::ZERO));
         if self.shadow_map.is_none() {
             self.ensure_shadow_map(gpu, SHADOW_MAP_SIZE);
         }
-        self.set_material(&gpu.queue, material);
-        Ok(())
+        Ok(subject)
     }
 
     /// Uploads another subject beside the character (at load: the showroom's scanned head)
@@ -235,19 +242,8 @@ impl Renderer {
         model: &Model,
         material: &Material,
     ) -> Result<usize, String> {
-        let models = self.pipelines.character.built().models;
-        let subject = CharacterGpu::new(
-            &gpu.device,
-            &gpu.queue,
-            &self.layouts,
-            &self.sampler,
-            model,
-            &models,
-        )?;
+        let subject = self.upload_subject(gpu, model)?;
         subject.set_material(&gpu.queue, material);
-        if subject.normal_mapped {
-            self.pipelines.character.add_normal_mapped(&gpu.device);
-        }
         if self.subjects.is_empty() {
             self.subjects.push(Subject::default());
         }
@@ -255,9 +251,6 @@ impl Renderer {
             gpu: Some(subject),
             bound: model_sphere(model).unwrap_or(CHARACTER.sphere_at(Vec3::ZERO)),
         });
-        if self.shadow_map.is_none() {
-            self.ensure_shadow_map(gpu, SHADOW_MAP_SIZE);
-        }
         Ok(self.subjects.len() - 1)
     }
 
