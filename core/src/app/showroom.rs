@@ -106,15 +106,7 @@ pub fn framing(feet: Vec3, aspect: f32, stage: Rect) -> CameraPose {
     // twice its fraction of the screen.
     let (sw, sh) = (2.0 * stage.w.max(0.2), 2.0 * stage.h.max(0.2));
     let d = (size.y / (t * sh * FILL)).max(size.x / (t * aspect * sw * FILL_W)) + size.z * 0.5;
-    let c = stage.center();
-    CameraPose {
-        eye: centre + VIEW_DIR.normalize() * d,
-        look: centre,
-        fov_y,
-        shift: Vec2::new(2.0 * c[0] - 1.0, 1.0 - 2.0 * c[1]),
-        near: 0.05,
-        far: 200.0,
-    }
+    stage_pose(centre, d, fov_y, stage)
 }
 
 /// The showroom camera for the scanned head of a runner at `feet` ([`head_matrix`]): the
@@ -130,9 +122,15 @@ pub fn head_framing(feet: Vec3, aspect: f32, stage: Rect) -> CameraPose {
     let up = (t * stage.h.max(0.1) * FILL).atan();
     let across = (t * aspect.max(1e-3) * stage.w.max(0.1) * FILL_W).atan();
     let d = radius / up.min(across).sin();
+    stage_pose(centre, d, fov_y, stage)
+}
+
+/// The showroom's camera looking at `centre` from `distance` along its view direction, its
+/// lens shifted so `centre` sits in the middle of `stage`.
+fn stage_pose(centre: Vec3, distance: f32, fov_y: f32, stage: Rect) -> CameraPose {
     let c = stage.center();
     CameraPose {
-        eye: centre + VIEW_DIR.normalize() * d,
+        eye: centre + VIEW_DIR.normalize() * distance,
         look: centre,
         fov_y,
         shift: Vec2::new(2.0 * c[0] - 1.0, 1.0 - 2.0 * c[1]),
