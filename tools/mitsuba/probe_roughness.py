@@ -143,6 +143,7 @@ def radial(img, half, npx, edges):
     s = [0.0] * nb
     s2 = [0.0] * nb
     n = [0] * nb
+    bad = [0] * nb
     for y in range(npx):
         cy = -half + (y + 0.5) * px
         for x in range(npx):
@@ -156,6 +157,11 @@ def radial(img, half, npx, edges):
                 b += 1
             base = (y * npx + x) * 3
             v = (vals[base] + vals[base + 1] + vals[base + 2]) / 3.0
+            if not math.isfinite(v):
+                # Mitsuba logs "Invalid sample value" for the odd NaN path and keeps the NaN
+                # in its pixel: that pixel is left out of its annulus
+                bad[b] += 1
+                continue
             s[b] += v
             s2[b] += v * v
             n[b] += 1
@@ -167,7 +173,7 @@ def radial(img, half, npx, edges):
             se.append(math.sqrt(var / n[i]))
         else:
             se.append(float("nan"))
-    return mean, se, n
+    return mean, se, n, bad
 
 
 def render_profile(ref, entry, alpha, c, seed, spp, spp_spec, pixel):
@@ -184,13 +190,13 @@ def render_profile(ref, entry, alpha, c, seed, spp, spp_spec, pixel):
     spec = mi.render(mi.load_dict(scene_dict(h, alpha, black(), half, npx, eta)),
                      spp=spp_spec, seed=seed + 1000)
     t2 = time.time()
-    lf, sef, n = radial(full, half, npx, edges)
-    ls, ses, _ = radial(spec, half, npx, edges)
+    lf, sef, n, bad = radial(full, half, npx, edges)
+    ls, ses, _, bad_s = radial(spec, half, npx, edges)
     return {
         "h_mm": h, "alpha": alpha, "channel": c, "seed": seed, "spp": spp,
         "spp_specular": spp_spec, "pixel_mm": pixel, "npx": npx,
         "L_full": lf, "L_full_se": sef, "L_specular": ls, "L_specular_se": ses,
-        "pixels_per_bin": n,
+        "pixels_per_bin": n, "nan_pixels": sum(bad), "nan_pixels_specular": sum(bad_s),
         "wall_full_s": round(t1 - t0, 1), "wall_specular_s": round(t2 - t1, 1),
     }
 

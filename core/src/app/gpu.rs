@@ -95,13 +95,23 @@ impl GameGpu {
             self.renderer.start_pipeline_builder();
         }
         self.frames += 1;
-        session.upload(
-            queue,
-            &mut self.renderer,
-            &mut self.ui,
-            character,
-            self.head.as_ref(),
-        );
+        let packet = session.extract(character, self.head.as_ref());
+        let r = &mut self.renderer;
+        let mut uploads = 1;
+        r.select_subject(packet.slot);
+        if let Some((model, pose, world)) = packet.subject {
+            r.update_character(queue, model, pose, world);
+            uploads += 1;
+        }
+        r.prepare(queue, &packet.view);
+        uploads += r.set_props(queue, packet.props);
+        self.ui.resize(queue, packet.viewport.0, packet.viewport.1);
+        if let Some(vertices) = packet.ui {
+            self.ui.upload(queue, vertices);
+            uploads += 1;
+        }
+        let ui = packet.ui.is_some();
+        session.uploaded(uploads, ui);
         // After the upload: the subject it shows decides which variant is waited for.
         let play = session.game.screen() == Screen::Play;
         self.renderer

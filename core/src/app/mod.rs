@@ -1,7 +1,8 @@
 //! The app around the runner game: the [`Session`] (input mapping, the menus and screens, the
 //! showroom, the settings file, the governor's scheduling, the follow camera), and its GPU
 //! side ([`GameGpu`], [`GameFrame`]): what the shells (desktop window, Android, `play`, the
-//! soak) run. The game's rules (`crate::game`) know nothing of it or of the renderer.
+//! soak) run. Each frame the session hands the GPU side a plain [`FramePacket`] (the extract
+//! step); the session itself touches no GPU object. The game's rules (`crate::game`) know nothing of it or of the renderer.
 
 mod frame;
 mod gpu;
@@ -15,6 +16,6 @@ pub use frame::{soak_sample, AfterEncode, GameFrame};
 pub use gpu::{GameGpu, ShowroomHead};
 pub use menu::MenuLayout;
 pub use screens::{GameUi, UiOutcome};
-pub use session::{FrameInfo, Key, Session, Viewport};
+pub use session::{FrameInfo, FramePacket, Key, Session, Viewport};
 pub use settings::Settings;
 pub use showroom::{Showroom, Subject};

@@ -7,7 +7,7 @@
 
 use std::path::PathBuf;
 
-use glam::Vec3;
+use glam::{Mat4, Vec3};
 
 use super::showroom::{head_matrix, is_showroom, Subject};
 use super::{GameUi, Settings, Showroom, ShowroomHead};
@@ -17,9 +17,9 @@ use crate::camera::{CameraPose, FollowCamera};
 use crate::game::{Bot, Game, Input, Screen, Swipe};
 use crate::governor::{Change, Governor, GovernorConfig, Needs, Tiers};
 use crate::render::rig::{CHARACTER, EXPOSURE};
-use crate::render::{DrawSet, FrameView, Light, PropInstance, Renderer, UiRenderer};
+use crate::render::{DrawSet, FrameView, Light, PropInstance};
 use crate::shading::ShadingModel;
-use crate::ui::{Insets, Ui};
+use crate::ui::{Insets, Ui, UiVertex};
 
 /// A discrete key the game understands.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -97,7 +97,7 @@ pub struct Session {
     /// Whether the character's bounding sphere is inside the view this frame; when it is not,
     /// it is neither animated nor uploaded.
     pub character_visible: bool,
-    /// Buffer uploads (`write_buffer` calls) made by the last [`Session::upload`].
+    /// Buffer uploads (`write_buffer` calls) made for the last [`Session::extract`].
     pub uploads: u32,
     /// Chooses the character's shading tier each frame (tiers follow the player's choice).
     pub governor: Governor,
@@ -105,6 +105,22 @@ pub struct Session {
     pub needs: Needs,
     /// 0: the wide follow camera, 1: the close-up; in between while switching.
     close: f32,
+}
+
+/// What one frame draws, as plain data: the session's side of the extract step between the
+/// app and the renderer ([`GameGpu::upload`](super::GameGpu::upload) writes it).
+pub struct FramePacket<'a> {
+    /// The renderer's subject slot drawn (0: the character).
+    pub slot: usize,
+    /// Its model, pose and placement; `None`: nothing to pose (the runner out of view).
+    pub subject: Option<(&'a Model, &'a Pose, Mat4)>,
+    pub view: FrameView,
+    pub props: &'a [PropInstance],
+    /// The target's size in pixels.
+    pub viewport: (u32, u32),
+    /// The UI's vertices, when they changed since the last upload.
+    pub ui: Option<&'a [UiVertex]>,
+    pub draw: DrawSet,
 }
 
 impl Session {
@@ -412,54 +428,47 @@ impl Session {
         }
     }
 
-    /// Writes this frame's GPU data: joint palettes, frame uniform, props, UI (if changed).
-    /// `head`: the showroom's scanned head where it was loaded, drawn instead of the runner
-    /// while the showroom shows it.
-    pub fn upload(
-        &mut self,
-        queue: &wgpu::Queue,
-        renderer: &mut Renderer,
-        ui: &mut UiRenderer,
-        character: &Model,
-        head: Option<&ShowroomHead>,
-    ) {
+    /// This frame's packet for the GPU side (the extract step): plain data, no GPU object.
+    /// `head`: the showroom's scanned head, when the GPU side holds it.
+    pub fn extract<'a>(
+        &'a self,
+        character: &'a Model,
+        head: Option<&'a ShowroomHead>,
+    ) -> FramePacket<'a> {
         let aspect = self.viewport.width as f32 / self.viewport.height.max(1) as f32;
-        self.uploads = 1;
-        match head.filter(|_| self.showroom.subject() == Subject::Head) {
+        let (slot, subject) = match head.filter(|_| self.showroom.subject() == Subject::Head) {
             Some(head) => {
-                renderer.select_subject(head.slot);
                 let (feet, _) = self.game.player_transform();
-                renderer.update_character(queue, &head.model, &head.pose, head_matrix(feet));
-                self.uploads += 1;
+                let pose = (&head.model, &head.pose, head_matrix(feet));
+                (head.slot, Some(pose))
             }
             None => {
-                renderer.select_subject(0);
-                if self.character_visible {
-                    renderer.update_character(
-                        queue,
-                        character,
-                        &self.pose,
-                        self.game.player_matrix(),
-                    );
-                    self.uploads += 1;
-                }
+                let pose = (character, &self.pose, self.game.player_matrix());
+                (0, self.character_visible.then_some(pose))
             }
-        }
-        renderer.prepare(
-            queue,
-            &FrameView {
+        };
+        FramePacket {
+            slot,
+            subject,
+            view: FrameView {
                 view_proj: self.view().view_proj(aspect),
                 camera_pos: self.view().eye,
                 light: self.light,
                 exposure: EXPOSURE,
             },
-        );
-        self.uploads += renderer.set_props(queue, &self.props);
-        ui.resize(queue, self.viewport.width, self.viewport.height);
-        if self.ui.needs_upload() {
-            ui.upload(queue, self.ui.vertices());
+            props: &self.props,
+            viewport: (self.viewport.width, self.viewport.height),
+            ui: self.ui.needs_upload().then(|| self.ui.vertices()),
+            draw: self.draw_set(),
+        }
+    }
+
+    /// Records what the GPU side uploaded of the last [`Session::extract`]: `uploads` buffer
+    /// writes, the UI's vertices among them if `ui`.
+    pub fn uploaded(&mut self, uploads: u32, ui: bool) {
+        self.uploads = uploads;
+        if ui {
             self.ui.mark_uploaded();
-            self.uploads += 1;
         }
     }
 
