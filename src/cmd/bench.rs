@@ -117,8 +117,11 @@ fn frame(
         .map_err(|e| format!("first frame: {e:?}"))?;
     let render_ms = split();
     let first_frame_ms = start.elapsed().as_secs_f64() * 1e3;
-    // Every other model's pipeline, from the background builder (started after the first
-    // frame).
+    // The second frame uploads the showroom's head and starts the background builder;
+    // then every other pipeline (the head's normal-mapped variants too) arrives.
+    GameFrame::new(&mut session, &mut game_gpu, &assets.character)
+        .run(&mut driver, &gpu, Output::Offscreen(&target))
+        .map_err(|e| format!("second frame: {e:?}"))?;
     game_gpu.finish_loading();
     let all_pipelines_ms = start.elapsed().as_secs_f64() * 1e3;
     drop(game_gpu);
@@ -129,12 +132,12 @@ fn frame(
         "pipelines_ms": pipelines_ms,
         "first_render_ms": render_ms,
         "model": first_model.name(),
-        "every_pipeline_ready_ms": all_pipelines_ms,
+        "everything_ready_ms": all_pipelines_ms,
     });
     let breakdown_text = format!(
         "load {load_ms:.0} + device {device_ms:.0} + tables {tables_ms:.0} + first pipeline and \
-         scene upload {pipelines_ms:.0} + first frame ({}) {render_ms:.0}; every model's \
-         pipeline ready at {all_pipelines_ms:.0}",
+         scene upload {pipelines_ms:.0} + first frame ({}) {render_ms:.0}; a second frame, \
+         the head and every pipeline ready at {all_pipelines_ms:.0}",
         first_model.name()
     );
     if first_frame_only {

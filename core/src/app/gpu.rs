@@ -2,8 +2,8 @@
 //! load — the first model's pipeline with them, the other reachable models' on a background
 //! thread once the first frame is out, all in place before play starts, so nothing is
 //! created in play. Where the scanned head was loaded ([`SceneAssets::head`]) it is uploaded
-//! here too, beside the runner, for the showroom: showing it swaps what is drawn and creates
-//! nothing.
+//! here too, after the first frame, beside the runner, for the showroom: showing it swaps what
+//! is drawn and creates nothing.
 
 use super::Session;
 use crate::anim::Pose;
@@ -17,8 +17,11 @@ use crate::shading::ShadingModel;
 pub struct GameGpu {
     pub renderer: Renderer,
     pub ui: UiRenderer,
-    /// The showroom's scanned head, when it was loaded and uploaded.
+    /// The showroom's scanned head, once uploaded.
     pub head: Option<ShowroomHead>,
+    /// The head loaded with the assets, until it is uploaded.
+    head_pending: Option<Model>,
+    device: wgpu::Device,
     /// Frames uploaded.
     frames: u64,
 }
@@ -46,38 +49,40 @@ impl GameGpu {
         renderer.load_scene(gpu, &assets.character, &assets.props, &SKIN1)?;
         // Contact shadows under the runner and the props, so nothing floats.
         renderer.enable_blob_shadows(gpu);
-        let head =
-            assets
-                .head
-                .as_ref()
-                .and_then(|model| match renderer.add_subject(gpu, model, &SKIN1) {
-                    Ok(slot) => {
-                        let mut pose = Pose::new(model);
-                        pose.update_world(model);
-                        Some(ShowroomHead {
-                            slot,
-                            model: model.clone(),
-                            pose,
-                        })
-                    }
-                    Err(e) => {
-                        log::warn!("the showroom's head is left out: {e}");
-                        None
-                    }
-                });
         let (rgba, w, h) = crate::ui::atlas_rgba();
         let ui = UiRenderer::new(&gpu.device, &gpu.queue, format, MSAA_SAMPLES, &rgba, w, h);
         Ok(Self {
             renderer,
             ui,
-            head,
+            head: None,
+            head_pending: assets.head.clone(),
+            device: gpu.device.clone(),
             frames: 0,
         })
     }
 
-    /// Whether the showroom can show the scanned head.
+    /// Whether the showroom can show the scanned head (uploaded after the first frame).
     pub fn has_head(&self) -> bool {
-        self.head.is_some()
+        self.head.is_some() || self.head_pending.is_some()
+    }
+
+    /// Uploads the showroom's head (after the first frame, before play): a subject beside
+    /// the runner; a head that cannot be drawn is left out (logged).
+    fn upload_head(&mut self, queue: &wgpu::Queue) {
+        let Some(model) = self.head_pending.take() else {
+            return;
+        };
+        match self
+            .renderer
+            .add_subject((&self.device, queue), &model, &SKIN1)
+        {
+            Ok(slot) => {
+                let mut pose = Pose::new(&model);
+                pose.update_world(&model);
+                self.head = Some(ShowroomHead { slot, model, pose });
+            }
+            Err(e) => log::warn!("the showroom's head is left out: {e}"),
+        }
     }
 
     /// Waits for every pipeline still being built in the background (before counting GPU
@@ -90,8 +95,11 @@ impl GameGpu {
     /// the pipelines built so far: waiting for the one this frame draws if it is not ready,
     /// and for all of them once play starts.
     pub fn upload(&mut self, queue: &wgpu::Queue, session: &mut Session, character: &Model) {
-        // The builder starts once the first frame is out (it would compete with it).
-        if self.frames > 0 {
+        // The showroom's head and the pipeline builder wait until the first frame is out
+        // (they would delay it), but not into play; the head first, so its normal-mapped
+        // pipelines join the builder's list.
+        if self.frames > 0 || session.game.screen() == Screen::Play {
+            self.upload_head(queue);
             self.renderer.start_pipeline_builder();
         }
         self.frames += 1;

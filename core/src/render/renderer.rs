@@ -203,7 +203,7 @@ impl Renderer {
         model: &Model,
         material: &Material,
     ) -> Result<(), String> {
-        let character = self.upload_subject(gpu, model)?;
+        let character = self.upload_subject(&gpu.device, &gpu.queue, model)?;
         self.select_subject(0);
         self.character = Some(character);
         self.casters.character = Some(CHARACTER);
@@ -214,21 +214,20 @@ impl Renderer {
 
     /// A skinned model's GPU side (constants for the built models), with what drawing it
     /// needs: the normal-mapped pipelines if it has a normal map, the shadow map.
-    fn upload_subject(&mut self, gpu: &Gpu, model: &Model) -> Result<CharacterGpu, String> {
+    fn upload_subject(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        model: &Model,
+    ) -> Result<CharacterGpu, String> {
         let models = self.pipelines.character.built().models;
-        let subject = CharacterGpu::new(
-            &gpu.device,
-            &gpu.queue,
-            &self.layouts,
-            &self.sampler,
-            model,
-            &models,
-        )?;
+        let subject =
+            CharacterGpu::new(device, queue, &self.layouts, &self.sampler, model, &models)?;
         if subject.normal_mapped {
-            self.pipelines.character.add_normal_mapped(&gpu.device);
+            self.pipelines.character.add_normal_mapped(device);
         }
         if self.shadow_map.is_none() {
-            self.ensure_shadow_map(gpu, SHADOW_MAP_SIZE);
+            self.ensure_shadow_map(device, SHADOW_MAP_SIZE);
         }
         Ok(subject)
     }
@@ -238,12 +237,12 @@ impl Renderer {
     /// character is slot 0). The character stays the one drawn.
     pub fn add_subject(
         &mut self,
-        gpu: &Gpu,
+        (device, queue): (&wgpu::Device, &wgpu::Queue),
         model: &Model,
         material: &Material,
     ) -> Result<usize, String> {
-        let subject = self.upload_subject(gpu, model)?;
-        subject.set_material(&gpu.queue, material);
+        let subject = self.upload_subject(device, queue, model)?;
+        subject.set_material(queue, material);
         if self.subjects.is_empty() {
             self.subjects.push(Subject::default());
         }
@@ -280,24 +279,24 @@ impl Renderer {
 
     /// Builds the key light's shadow map (once, or again at another size) and binds it to
     /// the frame group.
-    fn ensure_shadow_map(&mut self, gpu: &Gpu, size: u32) {
+    fn ensure_shadow_map(&mut self, device: &wgpu::Device, size: u32) {
         if self.shadow_map.as_ref().map(|m| m.size) != Some(size) {
-            let map = ShadowMap::new(&gpu.device, &self.layouts, size);
+            let map = ShadowMap::new(device, &self.layouts, size);
             let models = self.pipelines.character.built().models;
             self.penumbra = models
                 .iter()
                 .any(|m| m.effects().penumbra)
-                .then(|| Penumbra::new(&gpu.device, &map));
+                .then(|| Penumbra::new(device, &map));
             let no_penumbra;
             let penumbra_view = match &self.penumbra {
                 Some(p) => &p.result,
                 None => {
-                    no_penumbra = penumbra::grid_texture(&gpu.device, 1, "no penumbra map");
+                    no_penumbra = penumbra::grid_texture(device, 1, "no penumbra map");
                     &no_penumbra
                 }
             };
             self.frame_group = frame_group(
-                &gpu.device,
+                device,
                 &self.layouts,
                 &self.frame_buffer,
                 (&map.view, &self.shadow_sampler, penumbra_view),
@@ -317,7 +316,7 @@ impl Renderer {
         bound: Option<(Vec3, f32)>,
         size: u32,
     ) {
-        self.ensure_shadow_map(gpu, size);
+        self.ensure_shadow_map(&gpu.device, size);
         if let Some(map) = &mut self.shadow_map {
             map.character_casts = character_casts;
             map.set_occluder(&gpu.device, occluder);
