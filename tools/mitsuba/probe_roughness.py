@@ -27,7 +27,13 @@ boundary over an isotropic internal radiance, π·L_normal/M = KAPPA_SMOOTH (com
 
     python3 -m venv /tmp/mitsuba-venv && /tmp/mitsuba-venv/bin/pip install 'mitsuba==3.9.*'
     nice -n 15 /tmp/mitsuba-venv/bin/python tools/mitsuba/probe_roughness.py \
-        --heights 2 5 --alphas 0.1 0.2 0.35 0.5 --spp 16 --threads 2
+        --heights 2 5 --alphas 0.35 0.1 0.5 0.2 --seeds 1 2 --spp 48 --spp-specular 16 --threads 2
+    nice -n 15 /tmp/mitsuba-venv/bin/python tools/mitsuba/probe_roughness.py \
+        --heights 2 5 --alphas 0.1 0.05 --seeds 1 2 3 4 --spp 48 --spp-specular 16 --threads 2
+    nice -n 15 /tmp/mitsuba-venv/bin/python tools/mitsuba/probe_roughness.py --summarise-only \
+        --md /tmp/table.md
+
+(/tmp/mitsuba-venv because tools/mitsuba/.venv is not git-ignored in this repository.)
 
 Raw radial profiles are cached per render in --cache (resumable); the summary goes to
 docs/results/mitsuba-roughness.json and .md.
@@ -71,6 +77,36 @@ def kappa_smooth(eta, n=20000):
         mu = (i + 0.5) / n
         s += (1.0 - fresnel(mu, 1.0 / eta)) * mu / n
     return num / (2.0 * s)
+
+
+def bsdf_albedo(alpha, eta, n=20000, seed=7):
+    """Flux albedo (reflected + transmitted; TransportMode.Importance, so without the 1/η²
+    radiance scaling of refraction) of Mitsuba's roughdielectric, i.e. the fraction of the
+    flux that one boundary interaction keeps (1 for a smooth dielectric): at normal incidence
+    from outside, and from inside averaged over a cosine-weighted (diffuse) hemisphere."""
+    import random
+    b = mi.load_dict({"type": "roughdielectric", "distribution": "ggx", "alpha": alpha,
+                      "int_ior": eta, "ext_ior": 1.0})
+    ctx = mi.BSDFContext(mi.TransportMode.Importance)
+    rng = random.Random(seed)
+    out = {}
+    for name in ("outside_normal", "inside_diffuse"):
+        tot = 0.0
+        for _ in range(n):
+            si = mi.SurfaceInteraction3f()
+            si.n = mi.ScalarVector3f(0, 0, 1)
+            si.sh_frame = mi.Frame3f(mi.ScalarVector3f(0, 0, 1))
+            if name == "outside_normal":
+                si.wi = mi.ScalarVector3f(0, 0, 1)
+            else:
+                u1, u2 = rng.random(), rng.random()
+                r, ph = math.sqrt(u1), 2 * math.pi * u2
+                si.wi = mi.ScalarVector3f(r * math.cos(ph), r * math.sin(ph),
+                                          -math.sqrt(1 - u1))
+            _, w = b.sample(ctx, si, rng.random(), mi.ScalarPoint2f(rng.random(), rng.random()))
+            tot += w[0]
+        out[name] = tot / n
+    return out
 
 
 def scene_dict(h, alpha, interior, half, npx, eta):
@@ -240,6 +276,7 @@ def main():
     ap.add_argument("--deadline", type=float, default=None,
                     help="unix time after which no new render is started")
     ap.add_argument("--summarise-only", action="store_true")
+    ap.add_argument("--md", default=None, help="also write the summary table (markdown) here")
     args = ap.parse_args()
 
     dr.set_thread_count(args.threads)
@@ -342,7 +379,13 @@ def summarise(ref, entries, cache, args):
                     i1 = sum(w * v for w, v in zip(areas, a1))
                     row["seed_diff_integrated_ln"] = abs(math.log(i0 / i1))
                 rows.append(row)
+    albedo = {"%g" % a: bsdf_albedo(a, ref["eta"])
+              for a in sorted({v["alpha"] for v in cache.values()})}
     out = {
+        "bsdf_albedo": albedo,
+        "bsdf_albedo_note": "flux kept per boundary interaction by roughdielectric (20000 "
+                            "samples each; smooth = 1): normal incidence from outside, "
+                            "diffuse incidence from inside",
         "question": "issue 19: what the roughdielectric boundary of tools/mitsuba/render.py "
                     "changes on the point-light probe vs the project's Monte Carlo (smooth)",
         "reference": args.reference,
@@ -371,6 +414,8 @@ def summarise(ref, entries, cache, args):
     with open(args.out, "w") as f:
         json.dump(out, f, indent=1)
         f.write("\n")
+    if args.md:
+        write_md(out, args.md)
     for r in rows:
         print("h=%g a=%.2f %s  mean|ln| %.3f  int %.3f  shape %.3f  seeddiff %s / %s  "
               "MC relSE %.3f  mits relSE %.3f  wall %.0f s" % (
@@ -379,6 +424,28 @@ def summarise(ref, entries, cache, args):
                   "%.3f" % r["seed_diff_mean_abs_ln"] if r.get("seed_diff_mean_abs_ln") is not None else "-",
                   "%.3f" % r["seed_diff_integrated_ln"] if "seed_diff_integrated_ln" in r else "-",
                   r["mc_mean_rel_se"], r["mitsuba_mean_rel_se"], r["wall_s"]))
+
+
+def write_md(out, path):
+    def f(x, fmt="%.3f"):
+        return "–" if x is None or (isinstance(x, float) and math.isnan(x)) else fmt % x
+    lines = [
+        "| h (mm) | GGX α | ch | seeds × spp | mean \\|ln(M/MC)\\| | ∫M/∫MC | shape \\|ln\\| "
+        "| seed-diff mean \\|ln\\| | seed-diff \\|ln ∫\\| | Mitsuba mean rel SE | MC mean rel SE |",
+        "|---|---|---|---|---|---|---|---|---|---|---|",
+    ]
+    for r in out["rows"]:
+        lines.append("| %g | %g | %s | %d × %d | %s | %s | %s | %s | %s | %s | %s |" % (
+            r["h_mm"], r["alpha"], r["channel"], len(r["seeds"]), r["spp"],
+            f(r["mean_abs_ln"]), f(r["integrated_ratio"]), f(r["shape_mean_abs_ln"]),
+            f(r.get("seed_diff_mean_abs_ln")), f(r.get("seed_diff_integrated_ln")),
+            f(r["mitsuba_mean_rel_se"]), f(r["mc_mean_rel_se"])))
+    lines += ["", "| GGX α | flux kept, normal incidence from outside | flux kept, diffuse "
+              "incidence from inside |", "|---|---|---|"]
+    for a, v in sorted(out["bsdf_albedo"].items(), key=lambda kv: float(kv[0])):
+        lines.append("| %s | %.4f | %.4f |" % (a, v["outside_normal"], v["inside_diffuse"]))
+    with open(path, "w") as fh:
+        fh.write("\n".join(lines) + "\n")
 
 
 if __name__ == "__main__":
