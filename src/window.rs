@@ -8,7 +8,7 @@
 use std::path::PathBuf;
 use std::sync::Arc;
 
-use dermis_core::app::{GameFrame, GameGpu, Key as GameKey, Session};
+use dermis_core::app::{GameFrame, GameGpu, GameLoad, GameSetup, Key as GameKey, Session};
 use dermis_core::lifecycle::FrameStatus;
 use dermis_core::render::{
     FrameDriver, FrameOutput, Gpu, Output, Renderer, SurfaceOptions, SurfaceTarget,
@@ -25,6 +25,9 @@ use crate::demo::{Demo, DemoFrame};
 
 /// What the window shows.
 enum Mode {
+    /// The game, its assets and session still on the loader thread (while the window and the
+    /// device are made).
+    Loading(Option<GameLoad>),
     Game {
         session: Box<Session>,
         assets: Box<SceneAssets>,
@@ -73,23 +76,18 @@ pub fn game_settings_path(args: &GameArgs) -> Option<PathBuf> {
 }
 
 pub fn run_game(args: GameArgs) -> Result<(), String> {
-    // The showroom's scanned head too (its subject option appears where it loads).
-    let assets = SceneAssets::load(&crate::paths::assets_dir(), args.window.model.as_deref())
-        .map_err(|e| e.to_string())?
-        .with_head(&crate::paths::assets_dir());
-    let path = game_settings_path(&args);
-    let mut session = Session::new(&assets.character, args.seed, path, args.autoplay);
-    if let Some(m) = args.shading {
-        session.settings.set_shading_model(m);
-    }
-    run(
-        args.window,
-        Mode::Game {
-            session: Box::new(session),
-            assets: Box::new(assets),
-            gpu: None,
-        },
-    )
+    // The assets load while the window and the device are made; the showroom's scanned head
+    // after them (its subject option appears where it loads).
+    let load = GameLoad::start(GameSetup {
+        assets_dir: crate::paths::assets_dir(),
+        character: args.window.model.clone(),
+        seed: args.seed,
+        settings: game_settings_path(&args),
+        autoplay: args.autoplay,
+        shading: args.shading,
+        head: true,
+    });
+    run(args.window, Mode::Loading(Some(load)))
 }
 
 pub fn run_demo(args: DemoArgs) -> Result<(), String> {
@@ -109,8 +107,6 @@ pub fn run_demo(args: DemoArgs) -> Result<(), String> {
 }
 
 fn run(args: WindowArgs, mode: Mode) -> Result<(), String> {
-    let event_loop = EventLoop::new().map_err(|e| format!("cannot open a window: {e}"))?;
-    event_loop.set_control_flow(ControlFlow::Poll);
     let mut app = App {
         args,
         mode,
@@ -119,8 +115,21 @@ fn run(args: WindowArgs, mode: Mode) -> Result<(), String> {
         cursor: (0.0, 0.0),
         error: None,
     };
-    event_loop.run_app(&mut app).map_err(|e| e.to_string())?;
-    app.error.map_or(Ok(()), Err)
+    let ran = EventLoop::new()
+        .map_err(|e| format!("cannot open a window: {e}"))
+        .and_then(|event_loop| {
+            event_loop.set_control_flow(ControlFlow::Poll);
+            event_loop.run_app(&mut app).map_err(|e| e.to_string())
+        })
+        .and(app.error.take().map_or(Ok(()), Err));
+    // A game that never got its window: its loader's findings (a bad settings line, a broken
+    // asset) come first, then the window's error.
+    if let (Err(_), Mode::Loading(load)) = (&ran, &mut app.mode) {
+        if let Some(load) = load.take() {
+            load.wait()?;
+        }
+    }
+    ran
 }
 
 impl App {
@@ -134,6 +143,7 @@ impl App {
                 )
             }
             Mode::Demo { demo, .. } => demo.title(),
+            Mode::Loading(_) => "dermis".into(),
         }
     }
 
@@ -142,12 +152,7 @@ impl App {
             .with_title(self.title())
             .with_inner_size(winit::dpi::LogicalSize::new(1280.0, 720.0));
         let window = Arc::new(event_loop.create_window(attrs).map_err(|e| e.to_string())?);
-        let instance = Gpu::instance();
-        let surface = instance
-            .create_surface(window.clone())
-            .map_err(|e| e.to_string())?;
-        let gpu = pollster::block_on(Gpu::from_instance(instance, Some(&surface)))
-            .map_err(|e| e.to_string())?;
+        let (gpu, surface) = Gpu::with_surface(|| window.clone()).map_err(|e| e.to_string())?;
         log::info!("rendering with {}", gpu.adapter_name());
         let size = window.inner_size();
         let copy_src = self.args.screenshot.is_some();
@@ -164,6 +169,17 @@ impl App {
         target.on_present(move || notify.pre_present_notify());
         let format = target.format();
         match &mut self.mode {
+            Mode::Loading(load) => {
+                let load = load.take().ok_or("the game was already loaded")?;
+                let (assets, session) = load.wait()?;
+                let gg = GameGpu::new(&gpu, format, &assets, session.shading())?;
+                self.mode = Mode::Game {
+                    session: Box::new(session),
+                    assets: Box::new(assets),
+                    gpu: Some(Box::new(gg)),
+                };
+                window.set_title(&self.title());
+            }
             Mode::Game {
                 assets,
                 gpu: slot,
@@ -229,6 +245,7 @@ impl App {
                 }
                 _ => return,
             },
+            Mode::Loading(_) => return,
         }
         let title = self.title();
         if let Some(g) = &self.graphics {

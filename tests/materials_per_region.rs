@@ -107,7 +107,7 @@ fn cloth_is_the_same_under_every_model_and_skin_is_not() {
     let masked = SceneAssets {
         character: mask_character(&assets.character),
         props: Vec::new(),
-        head: None,
+        head: Default::default(),
     };
     let mut still = StillRenderer::new(&gpu, &masked, W, H).unwrap();
     let regions = still
@@ -199,7 +199,7 @@ fn a_model_without_a_declared_mask_is_all_skin() {
     let assets = SceneAssets {
         character: without,
         props: Vec::new(),
-        head: None,
+        head: Default::default(),
     };
     let mut still = StillRenderer::new(&gpu, &assets, 120, 135).unwrap();
     for model in [ShadingModel::Tabulated, ShadingModel::Ward] {

@@ -79,7 +79,7 @@ fn the_showroom_shows_the_scanned_head_under_its_orbiting_light() {
     let assets = SceneAssets::load(&root, None)
         .unwrap_or_else(|e| panic!("{e}"))
         .with_head(&root);
-    assert!(assets.head.is_some(), "the head did not load");
+    assert!(assets.head.wait().is_some(), "the head did not load");
     let mut rig = Rig::with_assets(W, H, assets);
     assert!(rig.gg.has_head());
     let scope = rig

@@ -283,37 +283,21 @@ impl Renderer {
 }
 
 fn init_gpu(window: NativeWindow) -> Result<(Gpu, wgpu::Surface<'static>), String> {
-    let mut errors = Vec::new();
-    for backends in [wgpu::Backends::VULKAN, wgpu::Backends::GL] {
-        let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
-        desc.backends = backends;
-        let instance = wgpu::Instance::new(desc);
-        let surface = match instance.create_surface(AndroidWindow(window.clone())) {
-            Ok(s) => s,
-            Err(e) => {
-                errors.push(format!("{backends:?}: create_surface: {e}"));
-                continue;
-            }
-        };
-        match pollster::block_on(Gpu::from_instance(instance, Some(&surface))) {
-            Ok(gpu) => {
-                let info = gpu.adapter.get_info();
-                log::info!(
-                    "GPU: {} ({:?}, {:?}) driver {} {}; timestamps {}",
-                    info.name,
-                    info.backend,
-                    info.device_type,
-                    info.driver,
-                    info.driver_info,
-                    gpu.timestamps
-                );
-                gpu.device.on_uncaptured_error(std::sync::Arc::new(|e| {
-                    log::error!("wgpu error: {e}");
-                }));
-                return Ok((gpu, surface));
-            }
-            Err(e) => errors.push(format!("{backends:?}: {e}")),
-        }
-    }
-    Err(format!("no usable GPU: {}", errors.join("; ")))
+    // Vulkan, else GLES (a phone without a usable Vulkan driver).
+    let (gpu, surface) = Gpu::with_surface(|| AndroidWindow(window.clone()))
+        .map_err(|e| format!("no usable GPU: {e}"))?;
+    let info = gpu.adapter.get_info();
+    log::info!(
+        "GPU: {} ({:?}, {:?}) driver {} {}; timestamps {}",
+        info.name,
+        info.backend,
+        info.device_type,
+        info.driver,
+        info.driver_info,
+        gpu.timestamps
+    );
+    gpu.device.on_uncaptured_error(std::sync::Arc::new(|e| {
+        log::error!("wgpu error: {e}");
+    }));
+    Ok((gpu, surface))
 }

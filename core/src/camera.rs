@@ -206,6 +206,42 @@ impl CameraPose {
     }
 }
 
+/// The six planes of a view-projection's clip volume (depth 0..1), for culling bounding
+/// spheres: Gribb and Hartmann's rows of the clip matrix, normalised.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Frustum {
+    planes: [Vec4; 6],
+}
+
+impl Frustum {
+    pub fn new(view_proj: Mat4) -> Self {
+        let r = [
+            view_proj.row(0),
+            view_proj.row(1),
+            view_proj.row(2),
+            view_proj.row(3),
+        ];
+        let planes = [
+            r[3] + r[0],
+            r[3] - r[0],
+            r[3] + r[1],
+            r[3] - r[1],
+            r[2],
+            r[3] - r[2],
+        ]
+        .map(|p| p / p.truncate().length().max(1e-12));
+        Self { planes }
+    }
+
+    /// Whether any of the sphere (`centre`, `radius`) may be inside (conservative near the
+    /// frustum's corners).
+    pub fn sphere_visible(&self, centre: Vec3, radius: f32) -> bool {
+        self.planes
+            .iter()
+            .all(|p| p.truncate().dot(centre) + p.w >= -radius)
+    }
+}
+
 /// A fixed camera looking from `eye` at `target` (for `render` and benches).
 pub fn look_at(eye: Vec3, target: Vec3, fov_y: f32, aspect: f32) -> Mat4 {
     directx::perspective(fov_y, aspect.max(1e-3), 0.05, 200.0)
@@ -215,6 +251,30 @@ pub fn look_at(eye: Vec3, target: Vec3, fov_y: f32, aspect: f32) -> Mat4 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_frustum_keeps_what_the_camera_sees_and_drops_what_is_behind_or_aside() {
+        let pose = CameraPose {
+            eye: Vec3::new(0.0, 1.5, 5.0),
+            look: Vec3::new(0.0, 1.0, 0.0),
+            fov_y: 0.8,
+            shift: Vec2::ZERO,
+            near: 0.1,
+            far: 100.0,
+        };
+        let f = Frustum::new(pose.view_proj(16.0 / 9.0));
+        assert!(f.sphere_visible(Vec3::new(0.0, 1.0, 0.0), 0.1));
+        // Behind the eye, beyond the far plane, far to the side: out, unless big enough to
+        // reach back in.
+        assert!(!f.sphere_visible(Vec3::new(0.0, 1.5, 8.0), 1.0));
+        assert!(f.sphere_visible(Vec3::new(0.0, 1.5, 8.0), 3.5));
+        assert!(!f.sphere_visible(Vec3::new(0.0, 1.0, -120.0), 5.0));
+        assert!(!f.sphere_visible(Vec3::new(40.0, 1.0, 0.0), 2.0));
+        // Just off the left edge, overlapping it by a little.
+        let half_w = (0.4f32).tan() * 5.0 * 16.0 / 9.0;
+        assert!(f.sphere_visible(Vec3::new(-half_w - 0.5, 1.0, 0.0), 0.6));
+        assert!(!f.sphere_visible(Vec3::new(-half_w - 0.5, 1.0, 0.0), 0.2));
+    }
 
     /// Scripted path: the character runs a curve, accelerating.
     fn path(t: f32) -> (Vec3, f32) {

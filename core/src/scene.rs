@@ -2,6 +2,7 @@
 //! frame the character for a camera.
 
 use std::path::Path;
+use std::sync::{Arc, OnceLock};
 
 use glam::{Mat4, Quat, Vec3};
 
@@ -14,8 +15,57 @@ pub struct SceneAssets {
     pub character: Model,
     pub props: Vec<(PropKind, Model)>,
     /// The scanned head for the game's showroom (`face::head`), where the shell asked for it
-    /// ([`SceneAssets::with_head`]) and it loaded; the APK does not carry it.
-    pub head: Option<Model>,
+    /// ([`SceneAssets::with_head`], or the game's loader thread); the APK does not carry it.
+    pub head: HeadLoad,
+}
+
+/// The showroom's scanned head as it loads: not asked for, still decoding (on the game's
+/// loader thread, after the character and the props), or done — the head, or nothing where
+/// it is missing or bad (one logged line). Clones share one load.
+#[derive(Clone, Default)]
+pub struct HeadLoad(Option<Arc<OnceLock<Option<Model>>>>);
+
+impl HeadLoad {
+    /// A load whose result [`HeadLoad::finish`] will bring.
+    pub fn pending() -> Self {
+        Self(Some(Arc::new(OnceLock::new())))
+    }
+
+    /// Loads the head from `assets_dir/head/` now.
+    pub fn load(assets_dir: &Path) -> Self {
+        let load = Self::pending();
+        load.finish(assets_dir);
+        load
+    }
+
+    /// Decodes the head (albedo and normal map) into this load; a missing or bad head is
+    /// logged and leaves none. A load not asked for, or done already, is left as it is.
+    pub fn finish(&self, assets_dir: &Path) {
+        let Some(cell) = &self.0 else { return };
+        if cell.get().is_some() {
+            return;
+        }
+        let head = match crate::face::head::load(assets_dir, true) {
+            Ok(head) => Some(head),
+            Err(e) => {
+                log::warn!("no scanned head in the showroom: {e}");
+                None
+            }
+        };
+        let _ = cell.set(head);
+    }
+
+    /// The head, waiting for a load in progress; `None`: not asked for, missing or bad.
+    pub fn wait(&self) -> Option<&Model> {
+        self.0.as_ref()?.wait().as_ref()
+    }
+
+    /// Whether a head may still be shown: asked for, and loading or loaded.
+    pub fn expected(&self) -> bool {
+        self.0
+            .as_ref()
+            .is_some_and(|cell| cell.get().is_none_or(|head| head.is_some()))
+    }
 }
 
 impl SceneAssets {
@@ -29,7 +79,7 @@ impl SceneAssets {
         Ok(Self {
             character: load_gltf(character.unwrap_or(&default))?,
             props: Self::props(&|path| load_gltf(&assets_dir.join(path)))?,
-            head: None,
+            head: HeadLoad::default(),
         })
     }
 
@@ -37,13 +87,7 @@ impl SceneAssets {
     /// showroom. A missing or bad head is one logged line and no head: the showroom then
     /// offers only the runner.
     pub fn with_head(mut self, assets_dir: &Path) -> Self {
-        self.head = match crate::face::head::load(assets_dir, true) {
-            Ok(head) => Some(head),
-            Err(e) => {
-                log::warn!("no scanned head in the showroom: {e}");
-                None
-            }
-        };
+        self.head = HeadLoad::load(assets_dir);
         self
     }
 
@@ -63,7 +107,7 @@ impl SceneAssets {
         Ok(Self {
             character: model(Self::CHARACTER)?,
             props: Self::props(&model)?,
-            head: None,
+            head: HeadLoad::default(),
         })
     }
 

@@ -54,15 +54,20 @@ fn without_the_head_there_is_no_subject_option() {
 fn a_missing_head_is_no_head_and_no_panic() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets");
     let assets = SceneAssets::load(&root, None).unwrap_or_else(|e| panic!("{e}"));
-    assert!(assets.head.is_none(), "the head is only loaded on request");
+    assert!(
+        assets.head.wait().is_none(),
+        "the head is only loaded on request"
+    );
+    assert!(!assets.head.expected());
     let empty = std::env::temp_dir().join(format!("dermis-no-head-{}", std::process::id()));
     std::fs::create_dir_all(&empty).unwrap();
-    assert!(assets.with_head(&empty).head.is_none());
+    assert!(assets.with_head(&empty).head.wait().is_none());
     // A head folder holding a broken mesh.
     std::fs::create_dir_all(empty.join("head")).unwrap();
     std::fs::write(empty.join("head/LeePerrySmith.glb"), b"glTF not really").unwrap();
     let assets = SceneAssets::load(&root, None).unwrap();
-    assert!(assets.with_head(&empty).head.is_none());
+    let head = assets.with_head(&empty).head;
+    assert!(head.wait().is_none() && !head.expected());
     std::fs::remove_dir_all(&empty).unwrap();
 }
 

@@ -25,12 +25,7 @@ impl App {
             Window::default_attributes().with_inner_size(winit::dpi::PhysicalSize::new(160, 120));
         let window = Arc::new(event_loop.create_window(attrs).map_err(|e| e.to_string())?);
         if self.gpu.is_none() {
-            let instance = Gpu::instance();
-            let surface = instance
-                .create_surface(window.clone())
-                .map_err(|e| e.to_string())?;
-            let gpu = pollster::block_on(Gpu::from_instance(instance, Some(&surface)))
-                .map_err(|e| e.to_string())?;
+            let (gpu, surface) = Gpu::with_surface(|| window.clone()).map_err(|e| e.to_string())?;
             drop(surface);
             gpu.wait();
             self.gpu = Some(gpu);

@@ -10,7 +10,7 @@ use crate::anim::Pose;
 use crate::asset::Model;
 use crate::game::Screen;
 use crate::render::{Gpu, PipelineSet, RenderStats, Renderer, Targets, UiRenderer, MSAA_SAMPLES};
-use crate::scene::SceneAssets;
+use crate::scene::{HeadLoad, SceneAssets};
 use crate::shading::material::SKIN1;
 use crate::shading::ShadingModel;
 
@@ -19,9 +19,10 @@ pub struct GameGpu {
     pub ui: UiRenderer,
     /// The showroom's scanned head, once uploaded.
     pub head: Option<ShowroomHead>,
-    /// The head loaded with the assets, until it is uploaded.
-    head_pending: Option<Model>,
+    /// The head as it loads, until it is uploaded.
+    head_load: HeadLoad,
     device: wgpu::Device,
+    queue: wgpu::Queue,
     /// Frames uploaded.
     frames: u64,
 }
@@ -45,8 +46,13 @@ impl GameGpu {
     ) -> Result<Self, String> {
         // Only what the game can reach: every menu model (the governor's tiers are among them).
         let set = PipelineSet::game();
-        let mut renderer = Renderer::with_first_pipeline(gpu, format, &set, first);
-        renderer.load_scene(gpu, &assets.character, &assets.props, &SKIN1)?;
+        let mut renderer = Renderer::with_scene(
+            gpu,
+            format,
+            (&set, first),
+            (&assets.character, &assets.props),
+            &SKIN1,
+        )?;
         // Contact shadows under the runner and the props, so nothing floats.
         renderer.enable_blob_shadows(gpu);
         let (rgba, w, h) = crate::ui::atlas_rgba();
@@ -55,26 +61,30 @@ impl GameGpu {
             renderer,
             ui,
             head: None,
-            head_pending: assets.head.clone(),
+            head_load: assets.head.clone(),
             device: gpu.device.clone(),
+            queue: gpu.queue.clone(),
             frames: 0,
         })
     }
 
-    /// Whether the showroom can show the scanned head (uploaded after the first frame).
+    /// Whether the showroom can show the scanned head (uploaded after the first frame, once
+    /// it is decoded).
     pub fn has_head(&self) -> bool {
-        self.head.is_some() || self.head_pending.is_some()
+        self.head.is_some() || self.head_load.expected()
     }
 
-    /// Uploads the showroom's head (after the first frame, before play): a subject beside
-    /// the runner; a head that cannot be drawn is left out (logged).
-    fn upload_head(&mut self, queue: &wgpu::Queue) {
-        let Some(model) = self.head_pending.take() else {
+    /// Uploads the showroom's head (after the first frame, before play), waiting for its
+    /// decoder if it is not done (it started with the assets, so it rarely is): a subject
+    /// beside the runner; a head that cannot be drawn is left out (logged).
+    fn upload_head(&mut self) {
+        let load = std::mem::take(&mut self.head_load);
+        let Some(model) = load.wait().cloned() else {
             return;
         };
         match self
             .renderer
-            .add_subject((&self.device, queue), &model, &SKIN1)
+            .add_subject((&self.device, &self.queue), &model)
         {
             Ok(slot) => {
                 let mut pose = Pose::new(&model);
@@ -85,9 +95,11 @@ impl GameGpu {
         }
     }
 
-    /// Waits for every pipeline still being built in the background (before counting GPU
-    /// objects; play waits for them by itself).
+    /// Waits for the showroom's head and every pipeline still being built in the
+    /// background (before counting GPU objects; play waits for them by itself).
     pub fn finish_loading(&mut self) {
+        self.upload_head();
+        self.renderer.start_pipeline_builder();
         self.renderer.receive_pipelines(None, true);
     }
 
@@ -98,21 +110,22 @@ impl GameGpu {
         // The showroom's head and the pipeline builder wait until the first frame is out
         // (they would delay it), but not into play; the head first, so its normal-mapped
         // pipelines join the builder's list.
-        if self.frames > 0 || session.game.screen() == Screen::Play {
-            self.upload_head(queue);
+        let play = session.game.screen() == Screen::Play;
+        if self.frames > 0 || play {
+            self.upload_head();
             self.renderer.start_pipeline_builder();
         }
         self.frames += 1;
         let packet = session.extract(character, self.head.as_ref());
         let r = &mut self.renderer;
-        let mut uploads = 1;
+        let mut uploads = 0;
         r.select_subject(packet.slot);
         if let Some((model, pose, world)) = packet.subject {
             r.update_character(queue, model, pose, world);
             uploads += 1;
         }
-        r.prepare(queue, &packet.view);
         uploads += r.set_props(queue, packet.props);
+        uploads += r.prepare(queue, &packet.view);
         self.ui.resize(queue, packet.viewport.0, packet.viewport.1);
         if let Some(vertices) = packet.ui {
             self.ui.upload(queue, vertices);
@@ -121,7 +134,6 @@ impl GameGpu {
         let ui = packet.ui.is_some();
         session.uploaded(uploads, ui);
         // After the upload: the subject it shows decides which variant is waited for.
-        let play = session.game.screen() == Screen::Play;
         self.renderer
             .receive_pipelines(session.draw_set().shading, play);
     }

@@ -6,6 +6,7 @@
 
 mod frame;
 mod gpu;
+mod load;
 pub mod menu;
 mod screens;
 pub mod session;
@@ -14,6 +15,7 @@ pub mod showroom;
 
 pub use frame::{soak_sample, AfterEncode, GameFrame};
 pub use gpu::{GameGpu, ShowroomHead};
+pub use load::{GameLoad, GameSetup, Loaded};
 pub use menu::MenuLayout;
 pub use screens::{GameUi, UiOutcome};
 pub use session::{FrameInfo, FramePacket, Key, Session, Viewport};

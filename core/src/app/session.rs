@@ -13,7 +13,7 @@ use super::showroom::{head_matrix, is_showroom, Subject};
 use super::{GameUi, Settings, Showroom, ShowroomHead};
 use crate::anim::Pose;
 use crate::asset::Model;
-use crate::camera::{CameraPose, FollowCamera};
+use crate::camera::{CameraPose, FollowCamera, Frustum};
 use crate::game::{Bot, Game, Input, Screen, Swipe};
 use crate::governor::{Change, Governor, GovernorConfig, Needs, Tiers};
 use crate::render::rig::{CHARACTER, EXPOSURE};
@@ -213,22 +213,7 @@ impl Session {
 
     /// Whether a sphere (centre, radius) is inside the camera's view for `aspect`.
     pub fn sphere_visible(&self, center: Vec3, radius: f32, aspect: f32) -> bool {
-        let m = self.view().view_proj(aspect);
-        // Gribb–Hartmann planes from the rows of the clip matrix (depth 0..1).
-        let r = [m.row(0), m.row(1), m.row(2), m.row(3)];
-        let planes = [
-            r[3] + r[0],
-            r[3] - r[0],
-            r[3] + r[1],
-            r[3] - r[1],
-            r[2],
-            r[3] - r[2],
-        ];
-        planes.iter().all(|p| {
-            let n = p.truncate();
-            let len = n.length().max(1e-12);
-            (n.dot(center) + p.w) / len >= -radius
-        })
+        Frustum::new(self.view().view_proj(aspect)).sphere_visible(center, radius)
     }
 
     /// The camera drawn this frame: the showroom's on the menu, the follow camera in play.

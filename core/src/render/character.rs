@@ -1,6 +1,7 @@
-//! GPU resources of the skinned character: meshes, one joint palette per skin, base-colour
-//! and normal-map bind groups and one parameter buffer per shading model. Created once at
-//! load.
+//! GPU resources of a skinned subject (the character, the showroom's head): meshes, one joint
+//! palette per skin, base-colour and normal-map bind groups. Created once at load; the
+//! shading models' constants are the renderer's ([`super::model_gpu`]), shared by every
+//! subject.
 
 use glam::Mat4;
 
@@ -9,7 +10,6 @@ use super::mesh::GpuMesh;
 use super::texture;
 use crate::anim::{joint_palette, Pose};
 use crate::asset::{Model, MAX_JOINTS};
-use crate::shading::{Lut, Material, ModelParams, ShadingModel};
 
 /// The normal map of a primitive without one: the flat normal, alpha 0 ("no map": the
 /// shader keeps the interpolated vertex normal bit for bit).
@@ -28,20 +28,9 @@ struct SkinGpu {
     palette: Vec<Mat4>,
 }
 
-/// One shading model's constants: its uniform, its LUT (pre-integrated models) and their
-/// bind group.
-struct ModelGpu {
-    model: ShadingModel,
-    buffer: wgpu::Buffer,
-    lut: Option<wgpu::Texture>,
-    group: wgpu::BindGroup,
-}
-
 pub struct CharacterGpu {
     parts: Vec<Part>,
     skins: Vec<SkinGpu>,
-    params: Vec<ModelGpu>,
-    unlit_params: wgpu::BindGroup,
     /// Triangles drawn per frame.
     pub triangles: u32,
     /// Some part has a normal map: drawn with the normal-mapped pipelines.
@@ -49,16 +38,13 @@ pub struct CharacterGpu {
 }
 
 impl CharacterGpu {
-    /// Uploads every skinned mesh of `model`, with constants for the shading models in
-    /// `models` only (a model no pipeline can draw gets no buffer, no LUT, no bake). Errors if
-    /// the glTF has no skinned mesh.
+    /// Uploads every skinned mesh of `model`. Errors if the glTF has no skinned mesh.
     pub fn new(
         device: &wgpu::Device,
         queue: &wgpu::Queue,
         layouts: &Layouts,
         sampler: &wgpu::Sampler,
         model: &Model,
-        models: &[ShadingModel],
     ) -> Result<Self, String> {
         let palette_size = (MAX_JOINTS * 64) as u64;
         let mut skins: Vec<SkinGpu> = Vec::new();
@@ -142,86 +128,12 @@ impl CharacterGpu {
                 model.source
             ));
         }
-        let param_buffer = |label| {
-            device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some(label),
-                size: ModelParams::SIZE,
-                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-                mapped_at_creation: false,
-            })
-        };
-        let lut_sampler = device.create_sampler(&wgpu::SamplerDescriptor {
-            label: Some("LUT"),
-            mag_filter: wgpu::FilterMode::Linear,
-            min_filter: wgpu::FilterMode::Linear,
-            ..Default::default()
-        });
-        let no_lut = texture::rgba16f(device, (1, 1), "no LUT");
-        texture::write_rgba16f(queue, &no_lut, &[[0.0; 4]]);
-        let bind = |buffer: &wgpu::Buffer, lut: &wgpu::Texture| {
-            let view = lut.create_view(&wgpu::TextureViewDescriptor::default());
-            device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("shading model params"),
-                layout: &layouts.model,
-                entries: &[
-                    wgpu::BindGroupEntry {
-                        binding: 0,
-                        resource: buffer.as_entire_binding(),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 1,
-                        resource: wgpu::BindingResource::TextureView(&view),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 2,
-                        resource: wgpu::BindingResource::Sampler(&lut_sampler),
-                    },
-                ],
-            })
-        };
-        let params = models
-            .iter()
-            .map(|&m| {
-                let buffer = param_buffer(m.name());
-                let lut = m
-                    .effects()
-                    .lut
-                    .then(|| texture::rgba16f(device, Lut::SIZE, m.name()));
-                let group = bind(&buffer, lut.as_ref().unwrap_or(&no_lut));
-                ModelGpu {
-                    model: m,
-                    buffer,
-                    lut,
-                    group,
-                }
-            })
-            .collect();
-        let unlit_buffer = param_buffer("unlit");
-        let unlit_params = bind(&unlit_buffer, &no_lut);
         Ok(Self {
             parts,
             skins,
-            params,
-            unlit_params,
             triangles,
             normal_mapped,
         })
-    }
-
-    /// Recomputes the constants of every model it holds for `material` (when the material
-    /// changes; the shipped tables are read once per material, see `shading::bake`).
-    pub fn set_material(&self, queue: &wgpu::Queue, material: &Material) {
-        for m in &self.params {
-            queue.write_buffer(&m.buffer, 0, bytemuck::bytes_of(&m.model.params(material)));
-            if let (Some(texture), Some(lut)) = (&m.lut, m.model.lut(material)) {
-                texture::write_rgba16f(queue, texture, &lut.texels);
-            }
-        }
-    }
-
-    /// Whether constants for `model` were made.
-    pub fn has_model(&self, model: ShadingModel) -> bool {
-        self.params.iter().any(|m| m.model == model)
     }
 
     /// Computes the joint palettes for `pose` placed at `world` and uploads them.
@@ -232,15 +144,6 @@ impl CharacterGpu {
                 *m = world * *m;
             }
             queue.write_buffer(&skin.buffer, 0, bytemuck::cast_slice(&skin.palette));
-        }
-    }
-
-    /// The bind group of `model`'s constants (`None`: the unlit baseline); `None` if the
-    /// model was not loaded.
-    pub(super) fn params_group(&self, model: Option<ShadingModel>) -> Option<&wgpu::BindGroup> {
-        match model {
-            Some(m) => self.params.iter().find(|p| p.model == m).map(|p| &p.group),
-            None => Some(&self.unlit_params),
         }
     }
 

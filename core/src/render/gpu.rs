@@ -97,15 +97,68 @@ impl Gpu {
         Self::PHONE_LIMITS.or_worse_values_from(adapter)
     }
 
-    /// An instance honouring `WGPU_BACKEND` etc. (Vulkan and GL compiled in).
-    pub fn instance() -> wgpu::Instance {
-        wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle().with_env())
+    /// The backends to try, in order: the platform's own API first (Vulkan; Metal, DX12
+    /// where compiled in), then GL for a machine where none offers an adapter. Setting GL up
+    /// (EGL, its driver) costs a start-up that uses Vulkan 15–25 ms for nothing, so its
+    /// instance is only made when needed. A backend named in `WGPU_BACKEND` is the only one
+    /// tried; wgpu's other variables are honoured too.
+    fn instances() -> impl Iterator<Item = (wgpu::Backends, wgpu::Instance)> {
+        let order = match wgpu::Backends::from_env() {
+            Some(chosen) => vec![chosen],
+            None => vec![wgpu::Backends::PRIMARY, wgpu::Backends::SECONDARY],
+        };
+        order.into_iter().map(|backends| {
+            let mut desc = wgpu::InstanceDescriptor::new_without_display_handle().with_env();
+            desc.backends = backends;
+            (backends, wgpu::Instance::new(desc))
+        })
     }
 
-    /// A context without a window (offscreen rendering, tests, benches).
+    /// A context without a window (offscreen rendering, tests, benches), on the first backend
+    /// of [`Self::instances`] with an adapter.
     pub fn headless() -> Result<Self, GpuError> {
-        let instance = Self::instance();
-        pollster::block_on(Self::from_instance(instance, None))
+        Self::first_usable(|instance| {
+            pollster::block_on(Self::from_instance(instance, None)).map(|gpu| (gpu, ()))
+        })
+        .map(|(gpu, ())| gpu)
+    }
+
+    /// A context and a surface for the window `make` hands out (once per backend tried),
+    /// on the first backend of [`Self::instances`] whose adapter can present to it.
+    pub fn with_surface<W>(make: impl Fn() -> W) -> Result<(Self, wgpu::Surface<'static>), GpuError>
+    where
+        W: Into<wgpu::SurfaceTarget<'static>>,
+    {
+        Self::first_usable(|instance| {
+            let surface = instance
+                .create_surface(make())
+                .map_err(|e| GpuError::NoAdapter(format!("cannot make a surface: {e}")))?;
+            let gpu = pollster::block_on(Self::from_instance(instance, Some(&surface)))?;
+            Ok((gpu, surface))
+        })
+    }
+
+    /// `try_one` on each backend in turn until one gives a device; otherwise every
+    /// backend's reason (a device error if some backend had an adapter).
+    fn first_usable<T>(
+        try_one: impl Fn(wgpu::Instance) -> Result<(Self, T), GpuError>,
+    ) -> Result<(Self, T), GpuError> {
+        let (mut reasons, mut had_adapter) = (Vec::new(), false);
+        for (backends, instance) in Self::instances() {
+            match try_one(instance) {
+                Ok(done) => return Ok(done),
+                Err(GpuError::NoAdapter(e)) => reasons.push(format!("{backends:?}: {e}")),
+                Err(GpuError::Device(e)) => {
+                    had_adapter = true;
+                    reasons.push(format!("{backends:?}: {e}"));
+                }
+            }
+        }
+        let reasons = reasons.join("; ");
+        Err(match had_adapter {
+            true => GpuError::Device(reasons),
+            false => GpuError::NoAdapter(reasons),
+        })
     }
 
     /// A context whose adapter can present to `surface`.

@@ -12,6 +12,7 @@ mod frame;
 mod gpu;
 mod layouts;
 mod mesh;
+mod model_gpu;
 mod offscreen;
 mod penumbra;
 mod pipelines;

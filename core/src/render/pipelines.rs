@@ -7,6 +7,7 @@ use std::sync::mpsc;
 
 use super::layouts::Layouts;
 use super::mesh::{instance_layout, vertex_layout};
+use super::model_gpu::{ModelTable, PipelineKey};
 use super::sss_pass::SPLIT_FORMAT;
 use super::targets::{depth_state, multisample, MSAA_SAMPLES};
 use crate::shader::{compose, ShaderDefs};
@@ -62,16 +63,15 @@ impl PipelineSet {
     }
 }
 
-/// Which character pipeline: a model, for meshes without a normal map or with one.
-pub type PipelineKey = (ShadingModel, bool);
-
-/// A character pipeline for each requested model (and, once a mesh with a normal map is
-/// loaded, each model's normal-mapped variant), plus the unlit baseline if requested.
+/// The character pipelines: those built at load wait in `ready` until the renderer installs
+/// them into its [`ModelTable`]; the rest of the set is built on a background thread and
+/// installed as it arrives. The unlit baseline's, if requested, lives here.
 pub struct CharacterPipelines {
-    built: Vec<(PipelineKey, wgpu::RenderPipeline)>,
+    /// Built, not yet installed.
+    ready: Vec<(PipelineKey, wgpu::RenderPipeline)>,
     layout: wgpu::PipelineLayout,
     format: wgpu::TextureFormat,
-    unlit: Option<wgpu::RenderPipeline>,
+    pub unlit: Option<wgpu::RenderPipeline>,
     /// The requested pipelines not yet received from the background builder.
     pending: Vec<PipelineKey>,
     /// What the builder needs, until [`Self::start_builder`] spawns it.
@@ -80,10 +80,14 @@ pub struct CharacterPipelines {
 }
 
 impl CharacterPipelines {
-    /// Installs the pipelines the background builder has finished; blocks for `need`'s (the
-    /// pipeline about to draw) or, with `all`, for every one still pending. A builder that
-    /// died leaves its pipelines unbuilt (logged; their models draw nothing).
-    pub fn receive(&mut self, need: Option<PipelineKey>, all: bool) {
+    /// Installs into `table` the pipelines built at load and those the background builder
+    /// has finished; blocks for `need`'s (the pipeline about to draw) or, with `all`, for
+    /// every one still pending. A builder that died leaves its pipelines unbuilt (logged;
+    /// their models draw nothing).
+    pub fn receive(&mut self, table: &mut ModelTable, need: Option<PipelineKey>, all: bool) {
+        for (key, pipeline) in self.ready.drain(..) {
+            table.install(key, pipeline);
+        }
         let blocking = |pending: &[PipelineKey]| all || need.is_some_and(|k| pending.contains(&k));
         if blocking(&self.pending) {
             self.start_builder();
@@ -108,7 +112,7 @@ impl CharacterPipelines {
                 break;
             };
             self.pending.retain(|k| *k != key);
-            self.built.push((key, pipeline));
+            table.install(key, pipeline);
         }
         self.arrivals = None;
     }
@@ -142,59 +146,21 @@ impl CharacterPipelines {
         !self.pending.is_empty()
     }
 
-    /// The pipeline drawing `model` (`None`: the unlit baseline) on a mesh with a normal map
-    /// or without.
-    pub fn get(
-        &self,
-        model: Option<ShadingModel>,
-        normal_mapped: bool,
-    ) -> Option<&wgpu::RenderPipeline> {
-        match model {
-            Some(model) => self
-                .built
-                .iter()
-                .find(|(k, _)| *k == (model, normal_mapped))
-                .map(|(_, p)| p),
-            None => self.unlit.as_ref(),
-        }
-    }
-
-    /// Adds every requested model's pipeline for meshes with a normal map (once, when the
+    /// Adds every recorded model's pipeline for meshes with a normal map (once, when the
     /// first such mesh is loaded: a scene without one has no normal-map code anywhere): to
     /// the background builder's list if it has not started, else built now.
-    pub fn add_normal_mapped(&mut self, device: &wgpu::Device) {
-        let keys: Vec<PipelineKey> = self.built().models.into_iter().map(|m| (m, true)).collect();
-        let missing = |k: &PipelineKey, s: &Self| {
-            !s.pending.contains(k) && !s.built.iter().any(|(b, _)| b == k)
-        };
-        for key in keys {
-            if !missing(&key, self) {
+    pub fn add_normal_mapped(&mut self, table: &mut ModelTable, device: &wgpu::Device) {
+        for model in table.models() {
+            let key = (model, true);
+            let built = table.pipeline(key).is_some() || self.ready.iter().any(|(k, _)| *k == key);
+            if built || self.pending.contains(&key) {
                 continue;
             }
             if self.builder.is_some() {
                 self.pending.push(key);
             } else {
-                let p = model_pipeline(device, &self.layout, self.format, key);
-                self.built.push((key, p));
+                table.install(key, model_pipeline(device, &self.layout, self.format, key));
             }
-        }
-    }
-
-    /// The models requested for meshes without a normal map: built, or being built (in
-    /// menu order).
-    pub fn built(&self) -> PipelineSet {
-        let mut models: Vec<ShadingModel> = self
-            .built
-            .iter()
-            .map(|(k, _)| *k)
-            .chain(self.pending.iter().copied())
-            .filter(|(_, mapped)| !mapped)
-            .map(|(m, _)| m)
-            .collect();
-        models.sort();
-        PipelineSet {
-            models,
-            unlit: self.unlit.is_some(),
         }
     }
 }
@@ -299,7 +265,7 @@ impl Pipelines {
             .then(|| prop(&ShaderDefs::new().flag("SCREEN_SPACE"), true));
         Self {
             character: CharacterPipelines {
-                built,
+                ready: built,
                 unlit,
                 layout: character_layout,
                 format,

@@ -8,6 +8,7 @@ use super::layouts::Layouts;
 use super::mesh::GpuMesh;
 use super::texture;
 use crate::asset::{Model, Primitive};
+use crate::camera::Frustum;
 
 /// The props the game and the demo scene use; each is a file in `assets/props/`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -62,6 +63,8 @@ pub(super) struct PropGpu {
     capacity: u32,
     pub count: u32,
     pub triangles: u32,
+    /// The model's bounding sphere (centre, radius) in its own space, for culling.
+    pub bound: (Vec3, f32),
 }
 
 /// Instances of one kind a frame may draw.
@@ -84,6 +87,7 @@ impl PropGpu {
             .collect();
         let mut parts = Vec::new();
         let mut triangles = 0;
+        let (mut lo, mut hi) = (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN));
         let worlds = node_worlds(model);
         for (node_index, node) in model.nodes.iter().enumerate() {
             let Some(mesh) = node.mesh else { continue };
@@ -119,6 +123,10 @@ impl PropGpu {
                     ],
                 });
                 triangles += baked.indices.len() as u32 / 3;
+                for v in &baked.vertices {
+                    lo = lo.min(Vec3::from(v.position));
+                    hi = hi.max(Vec3::from(v.position));
+                }
                 parts.push(Part {
                     mesh: GpuMesh::new(device, &baked, kind.file()),
                     material,
@@ -139,7 +147,20 @@ impl PropGpu {
             capacity: MAX_INSTANCES,
             count: 0,
             triangles,
+            bound: bounding_sphere(lo, hi),
         }
+    }
+
+    /// Whether an instance placed at `transform` may show in `frustum`.
+    pub fn visible(&self, frustum: &Frustum, transform: &Mat4) -> bool {
+        let (centre, radius) = self.bound;
+        let scale = transform
+            .x_axis
+            .truncate()
+            .length()
+            .max(transform.y_axis.truncate().length())
+            .max(transform.z_axis.truncate().length());
+        frustum.sphere_visible(transform.transform_point3(centre), radius * scale)
     }
 
     /// Sets this kind's instance matrices (at most `MAX_INSTANCES`); uploads only when they
@@ -183,6 +204,14 @@ fn node_worlds(model: &Model) -> Vec<Mat4> {
         stack.extend(model.nodes[n].children.iter().map(|&c| (c, w)));
     }
     worlds
+}
+
+/// The sphere around the box `lo`..`hi` (a point at the origin for an empty model).
+fn bounding_sphere(lo: Vec3, hi: Vec3) -> (Vec3, f32) {
+    if lo.cmpgt(hi).any() {
+        return (Vec3::ZERO, 0.0);
+    }
+    ((lo + hi) * 0.5, (hi - lo).length() * 0.5)
 }
 
 fn bake(prim: &Primitive, world: Mat4) -> Primitive {

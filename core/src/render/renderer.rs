@@ -5,6 +5,7 @@ use glam::{Mat4, Vec3};
 use super::character::CharacterGpu;
 use super::frame::{FrameUniform, Light};
 use super::layouts::Layouts;
+use super::model_gpu::ModelTable;
 use super::penumbra::{self, Penumbra};
 use super::pipelines::{PipelineSet, Pipelines};
 use super::props::{PropGpu, PropInstance, PropKind, MAX_INSTANCES};
@@ -18,6 +19,7 @@ use super::ui::UiRenderer;
 use super::Gpu;
 use crate::anim::Pose;
 use crate::asset::Model;
+use crate::camera::Frustum;
 use crate::shading::{Material, ShadingModel};
 
 /// What the camera sees this frame.
@@ -27,6 +29,59 @@ pub struct FrameView {
     pub camera_pos: Vec3,
     pub light: Light,
     pub exposure: f32,
+}
+
+/// The pipelines a renderer compiles at load: the shading models' and the props', and the
+/// subsurface pass where the set reaches a screen-space model.
+struct Compiled {
+    pipelines: Pipelines,
+    sss: Option<SssPass>,
+}
+
+impl Compiled {
+    fn new(
+        device: &wgpu::Device,
+        layouts: &Layouts,
+        format: wgpu::TextureFormat,
+        set: &PipelineSet,
+        first: Option<ShadingModel>,
+    ) -> Self {
+        Self {
+            pipelines: Pipelines::new(device, layouts, format, set, first),
+            sss: set
+                .needs_subsurface_pass()
+                .then(|| SssPass::new(device, layouts, format)),
+        }
+    }
+}
+
+/// A shadow map of `size` and, where one of `models` filters its shadow with it, its
+/// penumbra map.
+fn shadow_maps(
+    device: &wgpu::Device,
+    layouts: &Layouts,
+    size: u32,
+    models: &[ShadingModel],
+) -> (ShadowMap, Option<Penumbra>) {
+    let map = ShadowMap::new(device, layouts, size);
+    let penumbra = models
+        .iter()
+        .any(|m| m.effects().penumbra)
+        .then(|| Penumbra::new(device, &map));
+    (map, penumbra)
+}
+
+/// The textures' sampler: trilinear, repeating.
+fn trilinear_sampler(device: &wgpu::Device) -> wgpu::Sampler {
+    device.create_sampler(&wgpu::SamplerDescriptor {
+        label: Some("trilinear"),
+        address_mode_u: wgpu::AddressMode::Repeat,
+        address_mode_v: wgpu::AddressMode::Repeat,
+        mag_filter: wgpu::FilterMode::Linear,
+        min_filter: wgpu::FilterMode::Linear,
+        mipmap_filter: wgpu::MipmapFilterMode::Linear,
+        ..Default::default()
+    })
 }
 
 /// Counts for one encoded frame.
@@ -48,6 +103,8 @@ pub struct DrawSet {
 pub struct Renderer {
     layouts: Layouts,
     pipelines: Pipelines,
+    /// One record per shading model: its pipelines, constants and kernel.
+    models: ModelTable,
     /// The screen-space subsurface pass, when the pipeline set reaches a model that needs it.
     sss: Option<SssPass>,
     sampler: wgpu::Sampler,
@@ -77,6 +134,8 @@ pub struct Renderer {
     props: Vec<PropGpu>,
     /// Scratch for grouping prop instances by kind (reused, no per-frame allocation).
     scratch: Vec<[[f32; 4]; 4]>,
+    /// The props placed by [`Self::set_props`], before culling.
+    placed: Vec<PropInstance>,
     /// What casts a blob shadow (recorded at load).
     casters: Casters,
     /// Blob shadows, once enabled with a caster loaded (`shadow.rs`).
@@ -96,16 +155,58 @@ impl Renderer {
         Self::build(gpu, format, set, None)
     }
 
-    /// The same, building only `first`'s character pipeline now and the set's others on a
-    /// background thread once [`Self::start_pipeline_builder`] is called (after the first
-    /// frame: a quick first frame; see [`Self::receive_pipelines`]).
-    pub fn with_first_pipeline(
+    /// The game's renderer with its scene uploaded, building only `first`'s character
+    /// pipeline now and the set's others on a background thread once
+    /// [`Self::start_pipeline_builder`] is called (after the first frame: a quick first
+    /// frame; see [`Self::receive_pipelines`]). The pipelines compile on a second thread
+    /// while this one uploads the scene (textures, meshes, constants), which takes about as
+    /// long, so the start-up waits for the longer of the two rather than their sum.
+    pub fn with_scene(
         gpu: &Gpu,
         format: wgpu::TextureFormat,
-        set: &PipelineSet,
-        first: ShadingModel,
-    ) -> Self {
-        Self::build(gpu, format, set, Some(first))
+        (set, first): (&PipelineSet, ShadingModel),
+        (character, props): (&Model, &[(PropKind, Model)]),
+        material: &Material,
+    ) -> Result<Self, String> {
+        let (device, queue) = (&gpu.device, &gpu.queue);
+        let layouts = Layouts::new(device);
+        let sampler = trilinear_sampler(device);
+        let mut models = set.models.clone();
+        models.sort();
+        let (compiled, character_gpu, prop_gpus) = std::thread::scope(|s| {
+            let compiling = std::thread::Builder::new()
+                .name("dermis-compile".into())
+                .spawn_scoped(s, || {
+                    let compiled = Compiled::new(device, &layouts, format, set, Some(first));
+                    let shadows = shadow_maps(device, &layouts, SHADOW_MAP_SIZE, &models);
+                    (compiled, shadows)
+                });
+            let character_gpu = CharacterGpu::new(device, queue, &layouts, &sampler, character);
+            let prop_gpus: Vec<PropGpu> = props
+                .iter()
+                .map(|(kind, model)| PropGpu::new(device, queue, &layouts, &sampler, *kind, model))
+                .collect();
+            // No thread to spare: compile here.
+            let compiled = match compiling {
+                Ok(handle) => handle
+                    .join()
+                    .unwrap_or_else(|panic| std::panic::resume_unwind(panic)),
+                Err(_) => (
+                    Compiled::new(device, &layouts, format, set, Some(first)),
+                    shadow_maps(device, &layouts, SHADOW_MAP_SIZE, &models),
+                ),
+            };
+            (compiled, character_gpu, prop_gpus)
+        });
+        let (compiled, shadows) = compiled;
+        let table = ModelTable::new(device, queue, &layouts, &models);
+        let mut renderer = Self::assemble(gpu, format, (layouts, sampler, table), compiled);
+        renderer.install_shadow_maps(device, shadows);
+        renderer.install_character(gpu, character, character_gpu?, material);
+        for ((kind, model), prop) in props.iter().zip(prop_gpus) {
+            renderer.install_prop(*kind, model, prop);
+        }
+        Ok(renderer)
     }
 
     /// Installs the character pipelines built in the background so far; blocks for the one
@@ -115,7 +216,7 @@ impl Renderer {
         let mapped = self.character.as_ref().is_some_and(|c| c.normal_mapped);
         self.pipelines
             .character
-            .receive(need.map(|m| (m, mapped)), all);
+            .receive(&mut self.models, need.map(|m| (m, mapped)), all);
     }
 
     /// Starts building the other character pipelines in the background (after the first
@@ -135,21 +236,23 @@ impl Renderer {
         set: &PipelineSet,
         first: Option<ShadingModel>,
     ) -> Self {
+        let layouts = Layouts::new(&gpu.device);
+        let compiled = Compiled::new(&gpu.device, &layouts, format, set, first);
+        let sampler = trilinear_sampler(&gpu.device);
+        let mut models = set.models.clone();
+        models.sort();
+        let table = ModelTable::new(&gpu.device, &gpu.queue, &layouts, &models);
+        Self::assemble(gpu, format, (layouts, sampler, table), compiled)
+    }
+
+    /// A renderer around its compiled pipelines, with nothing loaded.
+    fn assemble(
+        gpu: &Gpu,
+        format: wgpu::TextureFormat,
+        (layouts, sampler, models): (Layouts, wgpu::Sampler, ModelTable),
+        Compiled { pipelines, sss }: Compiled,
+    ) -> Self {
         let device = &gpu.device;
-        let layouts = Layouts::new(device);
-        let pipelines = Pipelines::new(device, &layouts, format, set, first);
-        let sss = set
-            .needs_subsurface_pass()
-            .then(|| SssPass::new(device, &layouts, format, &set.models));
-        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
-            label: Some("trilinear"),
-            address_mode_u: wgpu::AddressMode::Repeat,
-            address_mode_v: wgpu::AddressMode::Repeat,
-            mag_filter: wgpu::FilterMode::Linear,
-            min_filter: wgpu::FilterMode::Linear,
-            mipmap_filter: wgpu::MipmapFilterMode::Linear,
-            ..Default::default()
-        });
         let frame_buffer = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("frame"),
             size: std::mem::size_of::<FrameUniform>() as u64,
@@ -165,9 +268,10 @@ impl Renderer {
             &frame_buffer,
             (&placeholder, &shadow_sampler, &no_penumbra),
         );
-        Self {
+        let mut renderer = Self {
             layouts,
             pipelines,
+            models,
             sss,
             sampler,
             frame_buffer,
@@ -184,6 +288,7 @@ impl Renderer {
             active_subject: 0,
             props: Vec::new(),
             scratch: Vec::with_capacity(MAX_INSTANCES as usize),
+            placed: Vec::with_capacity(PropKind::ALL.len() * MAX_INSTANCES as usize),
             casters: Casters::default(),
             shadows: None,
             format,
@@ -193,7 +298,10 @@ impl Renderer {
                 b: 0.022,
                 a: 1.0,
             },
-        }
+        };
+        // The pipelines built now go into their models' records.
+        renderer.receive_pipelines(None, false);
+        renderer
     }
 
     /// Uploads the character (replacing any previous one) with `material`'s constants.
@@ -204,12 +312,24 @@ impl Renderer {
         material: &Material,
     ) -> Result<(), String> {
         let character = self.upload_subject(&gpu.device, &gpu.queue, model)?;
+        self.install_character(gpu, model, character, material);
+        Ok(())
+    }
+
+    /// Makes `character`, uploaded from `model`, the character drawn.
+    fn install_character(
+        &mut self,
+        gpu: &Gpu,
+        model: &Model,
+        character: CharacterGpu,
+        material: &Material,
+    ) {
+        self.prepare_for(&gpu.device, &character);
         self.select_subject(0);
         self.character = Some(character);
         self.casters.character = Some(CHARACTER);
         self.character_bound = model_sphere(model).unwrap_or(CHARACTER.sphere_at(Vec3::ZERO));
         self.set_material(&gpu.queue, material);
-        Ok(())
     }
 
     /// A skinned model's GPU side (constants for the built models), with what drawing it
@@ -220,29 +340,33 @@ impl Renderer {
         queue: &wgpu::Queue,
         model: &Model,
     ) -> Result<CharacterGpu, String> {
-        let models = self.pipelines.character.built().models;
-        let subject =
-            CharacterGpu::new(device, queue, &self.layouts, &self.sampler, model, &models)?;
+        let subject = CharacterGpu::new(device, queue, &self.layouts, &self.sampler, model)?;
+        self.prepare_for(device, &subject);
+        Ok(subject)
+    }
+
+    /// What drawing `subject` needs: the normal-mapped pipelines if it has a normal map, the
+    /// shadow map.
+    fn prepare_for(&mut self, device: &wgpu::Device, subject: &CharacterGpu) {
         if subject.normal_mapped {
-            self.pipelines.character.add_normal_mapped(device);
+            self.pipelines
+                .character
+                .add_normal_mapped(&mut self.models, device);
         }
         if self.shadow_map.is_none() {
             self.ensure_shadow_map(device, SHADOW_MAP_SIZE);
         }
-        Ok(subject)
     }
 
-    /// Uploads another subject beside the character (at load: the showroom's scanned head)
-    /// with `material`'s constants; returns its slot for [`Renderer::select_subject`] (the
-    /// character is slot 0). The character stays the one drawn.
+    /// Uploads another subject beside the character (at load: the showroom's scanned head),
+    /// drawn with the renderer's material; returns its slot for [`Renderer::select_subject`]
+    /// (the character is slot 0). The character stays the one drawn.
     pub fn add_subject(
         &mut self,
         (device, queue): (&wgpu::Device, &wgpu::Queue),
         model: &Model,
-        material: &Material,
     ) -> Result<usize, String> {
         let subject = self.upload_subject(device, queue, model)?;
-        subject.set_material(queue, material);
         if self.subjects.is_empty() {
             self.subjects.push(Subject::default());
         }
@@ -281,28 +405,33 @@ impl Renderer {
     /// the frame group.
     fn ensure_shadow_map(&mut self, device: &wgpu::Device, size: u32) {
         if self.shadow_map.as_ref().map(|m| m.size) != Some(size) {
-            let map = ShadowMap::new(device, &self.layouts, size);
-            let models = self.pipelines.character.built().models;
-            self.penumbra = models
-                .iter()
-                .any(|m| m.effects().penumbra)
-                .then(|| Penumbra::new(device, &map));
-            let no_penumbra;
-            let penumbra_view = match &self.penumbra {
-                Some(p) => &p.result,
-                None => {
-                    no_penumbra = penumbra::grid_texture(device, 1, "no penumbra map");
-                    &no_penumbra
-                }
-            };
-            self.frame_group = frame_group(
-                device,
-                &self.layouts,
-                &self.frame_buffer,
-                (&map.view, &self.shadow_sampler, penumbra_view),
-            );
-            self.shadow_map = Some(map);
+            let maps = shadow_maps(device, &self.layouts, size, &self.models.models());
+            self.install_shadow_maps(device, maps);
         }
+    }
+
+    /// Draws shadows with `map` (and its penumbra map) from now on.
+    fn install_shadow_maps(
+        &mut self,
+        device: &wgpu::Device,
+        (map, penumbra): (ShadowMap, Option<Penumbra>),
+    ) {
+        self.penumbra = penumbra;
+        let no_penumbra;
+        let penumbra_view = match &self.penumbra {
+            Some(p) => &p.result,
+            None => {
+                no_penumbra = penumbra::grid_texture(device, 1, "no penumbra map");
+                &no_penumbra
+            }
+        };
+        self.frame_group = frame_group(
+            device,
+            &self.layouts,
+            &self.frame_buffer,
+            (&map.view, &self.shadow_sampler, penumbra_view),
+        );
+        self.shadow_map = Some(map);
     }
 
     /// A measurement scene's shadows: whether the character (the measured medium) casts, a
@@ -347,29 +476,28 @@ impl Renderer {
 
     /// Uploads a prop model for `kind`.
     pub fn load_prop(&mut self, gpu: &Gpu, kind: PropKind, model: &Model) {
-        self.props.retain(|p| p.kind != kind);
-        self.casters.set_prop(kind, model);
-        self.props.push(PropGpu::new(
+        let prop = PropGpu::new(
             &gpu.device,
             &gpu.queue,
             &self.layouts,
             &self.sampler,
             kind,
             model,
-        ));
+        );
+        self.install_prop(kind, model, prop);
     }
 
-    /// Recomputes the character's shading constants (and subsurface kernels) for `material`.
+    /// Draws `prop`, uploaded from `model`, for `kind` (replacing any earlier one).
+    fn install_prop(&mut self, kind: PropKind, model: &Model, prop: PropGpu) {
+        self.props.retain(|p| p.kind != kind);
+        self.casters.set_prop(kind, model);
+        self.props.push(prop);
+    }
+
+    /// Recomputes every model's shading constants (and subsurface kernels) for `material`:
+    /// every subject is drawn with it.
     pub fn set_material(&self, queue: &wgpu::Queue, material: &Material) {
-        if let Some(c) = &self.character {
-            c.set_material(queue, material);
-        }
-        for c in self.subjects.iter().filter_map(|s| s.gpu.as_ref()) {
-            c.set_material(queue, material);
-        }
-        if let Some(sss) = &self.sss {
-            sss.set_material(queue, material, self.clear);
-        }
+        self.models.set_material(queue, material, self.clear);
     }
 
     /// Builds the blob shadows (at load) if anything loaded casts one; returns whether they
@@ -403,23 +531,30 @@ impl Renderer {
         self.sss.is_some()
     }
 
-    /// Replaces the placed props.
-    /// Places the props; a kind whose instances did not change is not uploaded again.
-    /// Returns the number of buffer uploads made.
+    /// Places the props (their blob shadows uploaded now; [`Self::prepare`] draws those its
+    /// view can see). Returns the number of buffer uploads made.
     pub fn set_props(&mut self, queue: &wgpu::Queue, instances: &[PropInstance]) -> u32 {
+        self.placed.clear();
+        self.placed.extend_from_slice(instances);
+        match &mut self.shadows {
+            Some(s) => s.set_props(queue, &self.casters, instances),
+            None => 0,
+        }
+    }
+
+    /// Uploads each kind's placed instances that may show in `frustum` (a kind whose visible
+    /// instances did not change is not uploaded again). Returns the uploads made.
+    fn cull_props(&mut self, queue: &wgpu::Queue, frustum: &Frustum) -> u32 {
         let mut uploads = 0;
         for prop in &mut self.props {
             self.scratch.clear();
             self.scratch.extend(
-                instances
+                self.placed
                     .iter()
-                    .filter(|i| i.kind == prop.kind)
+                    .filter(|i| i.kind == prop.kind && prop.visible(frustum, &i.transform))
                     .map(|i| i.transform.to_cols_array_2d()),
             );
             uploads += u32::from(prop.set_instances(queue, &self.scratch));
-        }
-        if let Some(s) = &mut self.shadows {
-            uploads += s.set_props(queue, &self.casters, instances);
         }
         uploads
     }
@@ -464,8 +599,10 @@ impl Renderer {
         ShadowView::fit(light, centre, radius, map.size)
     }
 
-    /// Writes the frame uniform (and the shadow map's light matrix).
-    pub fn prepare(&self, queue: &wgpu::Queue, view: &FrameView) {
+    /// Writes the frame uniform (and the shadow map's light matrix) and the props this view
+    /// can see. Returns the number of buffer uploads made.
+    pub fn prepare(&mut self, queue: &wgpu::Queue, view: &FrameView) -> u32 {
+        let prop_uploads = self.cull_props(queue, &Frustum::new(view.view_proj));
         let shadow = self.shadow_view(view.light.position);
         if let (Some(map), true) = (&self.shadow_map, shadow.drawn) {
             map.prepare(queue, &shadow);
@@ -489,11 +626,15 @@ impl Renderer {
             (&shadow, grid),
         );
         queue.write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(&u));
+        1 + prop_uploads
     }
 
     /// The character pipelines that were built (or are being built).
     pub fn built_pipelines(&self) -> PipelineSet {
-        self.pipelines.character.built()
+        PipelineSet {
+            models: self.models.models(),
+            unlit: self.pipelines.character.unlit.is_some(),
+        }
     }
 
     pub fn character_triangles(&self) -> u32 {
@@ -549,7 +690,8 @@ impl Renderer {
         if let Some(sss) = &self.sss {
             // The split targets exist from the first frame of each size, whichever model it
             // draws: switching to a screen-space model later creates nothing.
-            let frame = sss.with_targets(targets.width, targets.height, |split| {
+            let size = (targets.width, targets.height);
+            let frame = sss.with_targets(size, &self.models, |split| {
                 split_model.map(|model| {
                     self.encode_split(encoder, targets, output, draw, ui, timer, model, split)
                 })
@@ -594,9 +736,12 @@ impl Renderer {
         })
     }
 
-    /// The character and props of `draw` into the open pass. With blob shadows on and props
-    /// drawn: the floor first, then the blobs (depth-tested against it), then what stands on
-    /// it, which covers its own blob.
+    /// The character and props of `draw` into the open pass, opaque first and nearest first:
+    /// the character (what the camera frames), then what stands on the floor, then the floor,
+    /// most of which lies behind them, so its hidden texels fail the early depth test instead
+    /// of being shaded and covered. With blob shadows on and props drawn the blobs go last,
+    /// blended over the floor and depth-tested against everything, so what stands on a blob
+    /// covers it.
     fn draw_scene<'p>(
         &'p self,
         pass: &mut wgpu::RenderPass<'p>,
@@ -605,27 +750,15 @@ impl Renderer {
         shadow_pipeline: Option<&'p wgpu::RenderPipeline>,
         stats: &mut RenderStats,
     ) {
-        // The blobs lie on the floor: none in a frame without it.
-        let shadows = self
-            .shadows
-            .as_ref()
-            .filter(|s| s.enabled && draw.props)
-            .zip(shadow_pipeline);
-        let is_floor = |p: &PropGpu| p.kind == PropKind::FloorTile;
-        if let Some((blobs, pipeline)) = shadows {
-            pass.set_pipeline(prop_pipeline);
-            for prop in self.props.iter().filter(|p| is_floor(p)) {
-                stats.draw_calls += prop.draw(pass);
-                stats.triangles += prop.triangles * prop.count;
-            }
-            let character = draw.character && self.character.is_some();
-            stats.draw_calls += blobs.draw(pass, pipeline, character);
-        }
         if draw.character {
             // A model outside the built set is not drawn (and never compiled at run time).
             if let Some(c) = &self.character {
-                let pipeline = self.pipelines.character.get(draw.shading, c.normal_mapped);
-                if let (Some(pipeline), Some(group)) = (pipeline, c.params_group(draw.shading)) {
+                let pipeline = match draw.shading {
+                    Some(m) => self.models.pipeline((m, c.normal_mapped)),
+                    None => self.pipelines.character.unlit.as_ref(),
+                };
+                let group = self.models.params_group(draw.shading);
+                if let (Some(pipeline), Some(group)) = (pipeline, group) {
                     pass.set_pipeline(pipeline);
                     pass.set_bind_group(1, group, &[]);
                     stats.draw_calls += c.draw(pass);
@@ -633,17 +766,21 @@ impl Renderer {
                 }
             }
         }
-        if draw.props {
-            pass.set_pipeline(prop_pipeline);
-            // The floor went first when the blobs were drawn.
-            for prop in self
-                .props
-                .iter()
-                .filter(|p| shadows.is_none() || !is_floor(p))
-            {
-                stats.draw_calls += prop.draw(pass);
-                stats.triangles += prop.triangles * prop.count;
-            }
+        if !draw.props {
+            return;
+        }
+        pass.set_pipeline(prop_pipeline);
+        let is_floor = |p: &&PropGpu| p.kind == PropKind::FloorTile;
+        let standing = self.props.iter().filter(|p| !is_floor(p));
+        for prop in standing.chain(self.props.iter().filter(is_floor)) {
+            stats.draw_calls += prop.draw(pass);
+            stats.triangles += prop.triangles * prop.count;
+        }
+        // The blobs lie on the floor: none in a frame without it.
+        let shadows = self.shadows.as_ref().filter(|s| s.enabled);
+        if let (Some(blobs), Some(pipeline)) = (shadows, shadow_pipeline) {
+            let character = draw.character && self.character.is_some();
+            stats.draw_calls += blobs.draw(pass, pipeline, character);
         }
     }
 

@@ -8,10 +8,10 @@
 use std::sync::Mutex;
 
 use super::layouts::Layouts;
+use super::model_gpu::ModelTable;
 use super::targets::{depth_state, multisample, MSAA_SAMPLES};
 use crate::shader::{compose, ShaderDefs};
-use crate::shading::subsurface::{KernelUniform, ANGLES};
-use crate::shading::{Material, ShadingModel};
+use crate::shading::ShadingModel;
 
 /// Format of both intermediate targets (linear radiance; irradiance and pixel size in mm).
 pub const SPLIT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
@@ -40,8 +40,6 @@ impl SplitTargets {
 pub struct SssPass {
     pub pipeline: wgpu::RenderPipeline,
     layout: wgpu::BindGroupLayout,
-    /// One kernel uniform per screen-space model the renderer can draw.
-    kernels: Vec<(ShadingModel, wgpu::Buffer)>,
     sampler: wgpu::Sampler,
     device: wgpu::Device,
     targets: Mutex<Option<SplitTargets>>,
@@ -57,13 +55,8 @@ fn entry(binding: u32, ty: wgpu::BindingType) -> wgpu::BindGroupLayoutEntry {
 }
 
 impl SssPass {
-    /// The pass for the screen-space models among `models`.
-    pub fn new(
-        device: &wgpu::Device,
-        layouts: &Layouts,
-        format: wgpu::TextureFormat,
-        models: &[ShadingModel],
-    ) -> Self {
+    /// The pass (its kernels are the screen-space models' records, [`ModelTable::kernels`]).
+    pub fn new(device: &wgpu::Device, layouts: &Layouts, format: wgpu::TextureFormat) -> Self {
         let texture = wgpu::BindingType::Texture {
             sample_type: wgpu::TextureSampleType::Float { filterable: true },
             view_dimension: wgpu::TextureViewDimension::D2,
@@ -123,19 +116,6 @@ impl SssPass {
             multiview_mask: None,
             cache: None,
         });
-        let kernels = models
-            .iter()
-            .filter(|m| m.effects().screen_space)
-            .map(|&m| {
-                let buffer = device.create_buffer(&wgpu::BufferDescriptor {
-                    label: Some(m.name()),
-                    size: std::mem::size_of::<KernelUniform>() as u64,
-                    usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-                    mapped_at_creation: false,
-                });
-                (m, buffer)
-            })
-            .collect();
         let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("subsurface spread"),
             mag_filter: wgpu::FilterMode::Linear,
@@ -145,45 +125,28 @@ impl SssPass {
         Self {
             pipeline,
             layout,
-            kernels,
             sampler,
             device: device.clone(),
             targets: Mutex::new(None),
         }
     }
 
-    /// Uploads every screen-space model's kernel for `material` (when the material changes).
-    pub fn set_material(&self, queue: &wgpu::Queue, material: &Material, background: wgpu::Color) {
-        let bg = [
-            background.r as f32,
-            background.g as f32,
-            background.b as f32,
-            background.a as f32,
-        ];
-        for (model, buffer) in &self.kernels {
-            if let Some(kernel) = model.kernel(material) {
-                let uniform = kernel.pack(ANGLES, bg);
-                queue.write_buffer(buffer, 0, bytemuck::bytes_of(&uniform));
-            }
-        }
-    }
-
-    /// Runs `f` with the split targets for `width × height`, making them on the first frame of
-    /// a size.
+    /// Runs `f` with the split targets for `width × height`, making them (and a bind group
+    /// per kernel of `models`) on the first frame of a size.
     pub fn with_targets<R>(
         &self,
-        width: u32,
-        height: u32,
+        (width, height): (u32, u32),
+        models: &ModelTable,
         f: impl FnOnce(&SplitTargets) -> R,
     ) -> R {
         let mut guard = self.targets.lock().unwrap_or_else(|e| e.into_inner());
         if !matches!(&*guard, Some(t) if t.width == width && t.height == height) {
-            *guard = Some(self.make_targets(width, height));
+            *guard = Some(self.make_targets(width, height, models));
         }
         f(guard.as_ref().expect("made above"))
     }
 
-    fn make_targets(&self, width: u32, height: u32) -> SplitTargets {
+    fn make_targets(&self, width: u32, height: u32, models: &ModelTable) -> SplitTargets {
         let make = |label, samples, usage| {
             self.device
                 .create_texture(&wgpu::TextureDescriptor {
@@ -206,9 +169,8 @@ impl SssPass {
         let sampled = attach | wgpu::TextureUsages::TEXTURE_BINDING;
         let colour = make("subsurface colour", 1, sampled);
         let spread = make("subsurface spread", 1, sampled);
-        let groups = self
-            .kernels
-            .iter()
+        let groups = models
+            .kernels()
             .map(|(model, kernel)| {
                 let group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
                     label: Some("subsurface pass"),
@@ -232,7 +194,7 @@ impl SssPass {
                         },
                     ],
                 });
-                (*model, group)
+                (model, group)
             })
             .collect();
         SplitTargets {

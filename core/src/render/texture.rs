@@ -123,38 +123,62 @@ pub fn mip_count(width: u32, height: u32) -> u32 {
 fn downsample(src: &[u8], w: u32, h: u32, srgb: bool) -> Vec<u8> {
     let (nw, nh) = ((w / 2).max(1), (h / 2).max(1));
     let mut out = vec![0u8; (nw * nh * 4) as usize];
-    // Each byte's value, decoded once (the same numbers as decoding every texel).
-    static DECODE: std::sync::OnceLock<[[f32; 256]; 2]> = std::sync::OnceLock::new();
-    let decode = DECODE.get_or_init(|| {
-        let unit = |b: usize| b as f32 / 255.0;
-        [
-            std::array::from_fn(unit),
-            std::array::from_fn(|b| srgb_to_linear(unit(b))),
-        ]
-    });
-    let texel = |x: u32, y: u32, c: usize| -> f32 {
-        let b = src[((y.min(h - 1) * w + x.min(w - 1)) * 4) as usize + c] as usize;
-        decode[usize::from(srgb && c < 3)][b]
-    };
+    let t = tables();
+    let at = |x: u32, y: u32| ((y.min(h - 1) * w + x.min(w - 1)) * 4) as usize;
     for y in 0..nh {
         for x in 0..nw {
+            let (x2, y2) = (x * 2, y * 2);
+            let quad = [
+                at(x2, y2),
+                at(x2 + 1, y2),
+                at(x2, y2 + 1),
+                at(x2 + 1, y2 + 1),
+            ];
+            let texel = ((y * nw + x) * 4) as usize;
             for c in 0..4 {
-                let (x2, y2) = (x * 2, y * 2);
-                let avg = (texel(x2, y2, c)
-                    + texel(x2 + 1, y2, c)
-                    + texel(x2, y2 + 1, c)
-                    + texel(x2 + 1, y2 + 1, c))
-                    / 4.0;
-                let v = if srgb && c < 3 {
-                    linear_to_srgb(avg)
+                let linear = srgb && c < 3;
+                let decode = &t.decode[usize::from(linear)];
+                let sum: f32 = quad.iter().map(|&i| decode[src[i + c] as usize]).sum();
+                let avg = sum * 0.25;
+                out[texel + c] = if linear {
+                    t.encode(avg)
                 } else {
-                    avg
+                    (avg * 255.0 + 0.5).clamp(0.0, 255.0) as u8
                 };
-                out[((y * nw + x) * 4) as usize + c] = (v * 255.0 + 0.5).clamp(0.0, 255.0) as u8;
             }
         }
     }
     out
+}
+
+/// Each byte's value (plain and sRGB-decoded), and the linear values where the sRGB-encoded
+/// byte steps up: what a mip level costs is table lookups, not `powf` per texel.
+struct Tables {
+    decode: [[f32; 256]; 2],
+    /// `steps[k]`: the least linear value encoded to byte `k + 1` (the sRGB curve's midpoint
+    /// between `k` and `k + 1`, decoded).
+    steps: [f32; 255],
+}
+
+impl Tables {
+    /// The sRGB byte of a linear value in [0, 1]: the steps at or below it.
+    fn encode(&self, linear: f32) -> u8 {
+        self.steps.partition_point(|&s| s <= linear) as u8
+    }
+}
+
+fn tables() -> &'static Tables {
+    static TABLES: std::sync::OnceLock<Tables> = std::sync::OnceLock::new();
+    TABLES.get_or_init(|| {
+        let unit = |b: usize| b as f32 / 255.0;
+        Tables {
+            decode: [
+                std::array::from_fn(unit),
+                std::array::from_fn(|b| srgb_to_linear(unit(b))),
+            ],
+            steps: std::array::from_fn(|k| srgb_to_linear((k as f32 + 0.5) / 255.0)),
+        }
+    })
 }
 
 fn srgb_to_linear(v: f32) -> f32 {
@@ -165,6 +189,8 @@ fn srgb_to_linear(v: f32) -> f32 {
     }
 }
 
+/// The sRGB curve itself (what [`Tables::encode`] is checked against).
+#[cfg(test)]
 fn linear_to_srgb(v: f32) -> f32 {
     if v <= 0.0031308 {
         v * 12.92
@@ -182,6 +208,23 @@ mod tests {
         assert_eq!(mip_count(1, 1), 1);
         assert_eq!(mip_count(512, 512), 10);
         assert_eq!(mip_count(640, 3), 10);
+    }
+
+    #[test]
+    fn the_encode_table_rounds_as_the_srgb_curve_does() {
+        let t = tables();
+        let mut off = 0;
+        let n = 200_000;
+        for i in 0..=n {
+            let v = i as f32 / n as f32;
+            let exact = (linear_to_srgb(v) * 255.0 + 0.5).clamp(0.0, 255.0) as u8;
+            let got = t.encode(v);
+            assert!(exact.abs_diff(got) <= 1, "{v}: {exact} vs {got}");
+            off += usize::from(exact != got);
+        }
+        // Only where float rounding lands exactly on a step.
+        assert!(off <= 2, "{off} of {n} values off by one");
+        assert_eq!((t.encode(0.0), t.encode(1.0)), (0, 255));
     }
 
     #[test]
