@@ -34,8 +34,8 @@ pub struct ModelTable {
 }
 
 impl ModelTable {
-    /// Records for `models` (a model no pipeline can draw gets no buffer, no LUT, no bake),
-    /// their constants unwritten until [`Self::set_material`].
+    /// Records for `models`, kept in menu order (a model no pipeline can draw gets no
+    /// buffer, no LUT, no bake), their constants unwritten until [`Self::set_material`].
     pub fn new(
         device: &wgpu::Device,
         queue: &wgpu::Queue,
@@ -79,9 +79,12 @@ impl ModelTable {
                 ],
             })
         };
-        let models = models
-            .iter()
-            .map(|&model| {
+        let mut sorted = models.to_vec();
+        sorted.sort();
+        sorted.dedup();
+        let models = sorted
+            .into_iter()
+            .map(|model| {
                 let params = uniform(model.name(), ModelParams::SIZE);
                 let effects = model.effects();
                 let lut = effects

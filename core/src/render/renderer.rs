@@ -171,14 +171,13 @@ impl Renderer {
         let (device, queue) = (&gpu.device, &gpu.queue);
         let layouts = Layouts::new(device);
         let sampler = trilinear_sampler(device);
-        let mut models = set.models.clone();
-        models.sort();
+        let models = &set.models;
         let (compiled, character_gpu, prop_gpus) = std::thread::scope(|s| {
             let compiling = std::thread::Builder::new()
                 .name("dermis-compile".into())
                 .spawn_scoped(s, || {
                     let compiled = Compiled::new(device, &layouts, format, set, Some(first));
-                    let shadows = shadow_maps(device, &layouts, SHADOW_MAP_SIZE, &models);
+                    let shadows = shadow_maps(device, &layouts, SHADOW_MAP_SIZE, models);
                     (compiled, shadows)
                 });
             let character_gpu = CharacterGpu::new(device, queue, &layouts, &sampler, character);
@@ -193,13 +192,13 @@ impl Renderer {
                     .unwrap_or_else(|panic| std::panic::resume_unwind(panic)),
                 Err(_) => (
                     Compiled::new(device, &layouts, format, set, Some(first)),
-                    shadow_maps(device, &layouts, SHADOW_MAP_SIZE, &models),
+                    shadow_maps(device, &layouts, SHADOW_MAP_SIZE, models),
                 ),
             };
             (compiled, character_gpu, prop_gpus)
         });
         let (compiled, shadows) = compiled;
-        let table = ModelTable::new(device, queue, &layouts, &models);
+        let table = ModelTable::new(device, queue, &layouts, models);
         let mut renderer = Self::assemble(gpu, format, (layouts, sampler, table), compiled);
         renderer.install_shadow_maps(device, shadows);
         renderer.install_character(gpu, character, character_gpu?, material);
@@ -239,9 +238,7 @@ impl Renderer {
         let layouts = Layouts::new(&gpu.device);
         let compiled = Compiled::new(&gpu.device, &layouts, format, set, first);
         let sampler = trilinear_sampler(&gpu.device);
-        let mut models = set.models.clone();
-        models.sort();
-        let table = ModelTable::new(&gpu.device, &gpu.queue, &layouts, &models);
+        let table = ModelTable::new(&gpu.device, &gpu.queue, &layouts, &set.models);
         Self::assemble(gpu, format, (layouts, sampler, table), compiled)
     }
 
@@ -311,7 +308,8 @@ impl Renderer {
         model: &Model,
         material: &Material,
     ) -> Result<(), String> {
-        let character = self.upload_subject(&gpu.device, &gpu.queue, model)?;
+        let character =
+            CharacterGpu::new(&gpu.device, &gpu.queue, &self.layouts, &self.sampler, model)?;
         self.install_character(gpu, model, character, material);
         Ok(())
     }
@@ -330,19 +328,6 @@ impl Renderer {
         self.casters.character = Some(CHARACTER);
         self.character_bound = model_sphere(model).unwrap_or(CHARACTER.sphere_at(Vec3::ZERO));
         self.set_material(&gpu.queue, material);
-    }
-
-    /// A skinned model's GPU side (constants for the built models), with what drawing it
-    /// needs: the normal-mapped pipelines if it has a normal map, the shadow map.
-    fn upload_subject(
-        &mut self,
-        device: &wgpu::Device,
-        queue: &wgpu::Queue,
-        model: &Model,
-    ) -> Result<CharacterGpu, String> {
-        let subject = CharacterGpu::new(device, queue, &self.layouts, &self.sampler, model)?;
-        self.prepare_for(device, &subject);
-        Ok(subject)
     }
 
     /// What drawing `subject` needs: the normal-mapped pipelines if it has a normal map, the
@@ -366,7 +351,8 @@ impl Renderer {
         (device, queue): (&wgpu::Device, &wgpu::Queue),
         model: &Model,
     ) -> Result<usize, String> {
-        let subject = self.upload_subject(device, queue, model)?;
+        let subject = CharacterGpu::new(device, queue, &self.layouts, &self.sampler, model)?;
+        self.prepare_for(device, &subject);
         if self.subjects.is_empty() {
             self.subjects.push(Subject::default());
         }
