@@ -55,25 +55,12 @@ impl Scene {
                 exposure: EXPOSURE,
             },
         );
-        let mut encoder = self
-            .gpu
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
         let draw = DrawSet {
             shading: Some(ShadingModel::BASELINE),
             character: false,
             props: true,
         };
-        let stats = self.renderer.encode(
-            &mut encoder,
-            &self.target.targets,
-            &self.target.view,
-            draw,
-            None,
-            None,
-        );
-        self.target.copy_out(&mut encoder);
-        self.gpu.queue.submit([encoder.finish()]);
+        let stats = self.renderer.draw_offscreen(&self.gpu, &self.target, draw);
         (stats, self.target.read(&self.gpu))
     }
 }

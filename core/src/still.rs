@@ -181,24 +181,12 @@ impl StillRenderer {
 
     fn draw(&mut self, gpu: &Gpu, assets: &SceneAssets, shot: &Shot) -> Result<(), String> {
         self.setup(gpu, assets, shot)?;
-        let mut encoder = gpu
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
         let draw = DrawSet {
             shading: shot.shading,
             character: true,
             props: shot.props,
         };
-        self.renderer.encode(
-            &mut encoder,
-            &self.offscreen.targets,
-            &self.offscreen.view,
-            draw,
-            None,
-            None,
-        );
-        self.offscreen.copy_out(&mut encoder);
-        gpu.queue.submit([encoder.finish()]);
+        self.renderer.draw_offscreen(gpu, &self.offscreen, draw);
         Ok(())
     }
 

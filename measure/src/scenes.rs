@@ -342,24 +342,12 @@ impl SceneRenderer {
                 exposure: 1.0,
             },
         );
-        let mut encoder = gpu
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
         let draw = DrawSet {
             shading: Some(shading),
             character: true,
             props: false,
         };
-        self.renderer.encode(
-            &mut encoder,
-            &self.target.targets,
-            &self.target.view,
-            draw,
-            None,
-            None,
-        );
-        self.target.copy_out(&mut encoder);
-        gpu.queue.submit([encoder.finish()]);
+        self.renderer.draw_offscreen(gpu, &self.target, draw);
         self.target.read_f16(gpu)
     }
 }

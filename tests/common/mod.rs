@@ -65,24 +65,13 @@ impl Rig {
     /// The uploaded frame without the UI, the character drawn or not, read back.
     #[allow(dead_code)] // Not every test binary that shares the rig shoots frames.
     pub fn shoot_frame(&mut self, character: bool) -> RgbaImage {
-        let mut encoder = self
-            .gpu
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
         let draw = DrawSet {
             character,
             ..self.session.draw_set()
         };
-        self.gg.renderer.encode(
-            &mut encoder,
-            &self.target.targets,
-            &self.target.view,
-            draw,
-            None,
-            None,
-        );
-        self.target.copy_out(&mut encoder);
-        self.gpu.queue.submit([encoder.finish()]);
+        self.gg
+            .renderer
+            .draw_offscreen(&self.gpu, &self.target, draw);
         self.target.read(&self.gpu)
     }
 }

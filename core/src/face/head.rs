@@ -275,24 +275,12 @@ impl HeadRenderer {
             exposure: crate::render::EXPOSURE,
         };
         self.renderer.prepare(&gpu.queue, &view);
-        let mut encoder = gpu
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
         let draw = DrawSet {
             shading,
             character: true,
             props: false,
         };
-        self.renderer.encode(
-            &mut encoder,
-            &self.target.targets,
-            &self.target.view,
-            draw,
-            None,
-            None,
-        );
-        self.target.copy_out(&mut encoder);
-        gpu.queue.submit([encoder.finish()]);
+        self.renderer.draw_offscreen(gpu, &self.target, draw);
     }
 
     /// Linear radiance [W m⁻² sr⁻¹] per pixel (rows top to bottom) under a white point light

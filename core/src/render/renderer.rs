@@ -6,6 +6,7 @@ use super::character::CharacterGpu;
 use super::frame::{FrameUniform, Light};
 use super::layouts::Layouts;
 use super::model_gpu::ModelTable;
+use super::offscreen::Offscreen;
 use super::penumbra::{self, Penumbra};
 use super::pipelines::{PipelineSet, Pipelines};
 use super::props::{PropGpu, PropInstance, PropKind, MAX_INSTANCES};
@@ -172,14 +173,15 @@ impl Renderer {
         let layouts = Layouts::new(device);
         let sampler = trilinear_sampler(device);
         let models = &set.models;
+        let compile = || {
+            let compiled = Compiled::new(device, &layouts, format, set, Some(first));
+            let shadows = shadow_maps(device, &layouts, SHADOW_MAP_SIZE, models);
+            (compiled, shadows)
+        };
         let (compiled, character_gpu, prop_gpus) = std::thread::scope(|s| {
             let compiling = std::thread::Builder::new()
                 .name("dermis-compile".into())
-                .spawn_scoped(s, || {
-                    let compiled = Compiled::new(device, &layouts, format, set, Some(first));
-                    let shadows = shadow_maps(device, &layouts, SHADOW_MAP_SIZE, models);
-                    (compiled, shadows)
-                });
+                .spawn_scoped(s, compile);
             let character_gpu = CharacterGpu::new(device, queue, &layouts, &sampler, character);
             let prop_gpus: Vec<PropGpu> = props
                 .iter()
@@ -190,10 +192,7 @@ impl Renderer {
                 Ok(handle) => handle
                     .join()
                     .unwrap_or_else(|panic| std::panic::resume_unwind(panic)),
-                Err(_) => (
-                    Compiled::new(device, &layouts, format, set, Some(first)),
-                    shadow_maps(device, &layouts, SHADOW_MAP_SIZE, models),
-                ),
+                Err(_) => compile(),
             };
             (compiled, character_gpu, prop_gpus)
         });
@@ -625,6 +624,25 @@ impl Renderer {
 
     pub fn character_triangles(&self) -> u32 {
         self.character.as_ref().map_or(0, |c| c.triangles)
+    }
+
+    /// Draws `draw` (no UI, untimed) into `target` and queues the copy its `read` methods
+    /// return, in one submit.
+    pub fn draw_offscreen(&self, gpu: &Gpu, target: &Offscreen, draw: DrawSet) -> RenderStats {
+        let mut encoder = gpu
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+        let stats = self.encode(
+            &mut encoder,
+            &target.targets,
+            &target.view,
+            draw,
+            None,
+            None,
+        );
+        target.copy_out(&mut encoder);
+        gpu.queue.submit([encoder.finish()]);
+        stats
     }
 
     /// Records the frame into `encoder`, resolving into `output`: one render pass, or for a
