@@ -152,8 +152,12 @@ impl App {
             .with_title(self.title())
             .with_inner_size(winit::dpi::LogicalSize::new(1280.0, 720.0));
         let window = Arc::new(event_loop.create_window(attrs).map_err(|e| e.to_string())?);
-        let (gpu, surface) = Gpu::with_surface(|| window.clone()).map_err(|e| e.to_string())?;
+        let (mut gpu, surface) = Gpu::with_surface(|| window.clone()).map_err(|e| e.to_string())?;
         log::info!("rendering with {}", gpu.adapter_name());
+        // Last launch's pipelines ($XDG_CACHE_HOME/dermis), saved again at exit.
+        if let Some(dir) = dermis_core::render::pipeline_cache::desktop_dir() {
+            gpu.use_pipeline_cache(&dir);
+        }
         let size = window.inner_size();
         let copy_src = self.args.screenshot.is_some();
         let options = SurfaceOptions {

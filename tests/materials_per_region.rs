@@ -47,7 +47,7 @@ fn rgb(img: &RgbaImage, i: usize) -> [f32; 3] {
 fn mask_character(model: &Model) -> Model {
     let mut m = model.clone();
     for t in &mut m.textures {
-        for px in t.rgba8.chunks_exact_mut(4) {
+        for px in t.rgba8_mut().unwrap().chunks_exact_mut(4) {
             let a = px[3];
             px[0] = a;
             px[1] = 255 - a;
@@ -170,7 +170,8 @@ fn a_model_without_a_declared_mask_is_all_skin() {
     let no_file = |uri: &str| -> Result<Vec<u8>, String> { Err(format!("no file {uri}")) };
     let with = load_gltf_slice(&bytes, "character.glb", &no_file).unwrap();
     let alpha = |m: &Model| -> (usize, usize) {
-        let a = m.textures[0].rgba8.chunks_exact(4).map(|p| p[3]);
+        let px = m.textures[0].rgba8().unwrap();
+        let a = px.chunks_exact(4).map(|p| p[3]);
         (
             a.clone().filter(|&x| x == 0).count(),
             a.filter(|&x| x == 255).count(),

@@ -44,6 +44,7 @@ fn android_main(app: AndroidApp) {
     let test_loop = extras.is_test_loop();
     let mut renderer = Renderer::new(load_game(&app, &extras, soak.as_ref()), display_scale(&app));
     renderer.soak = soak.map(Soak::new);
+    renderer.cache_dir = crate::intent::cache_dir(&app);
     if let Some(error) = soak_error {
         log::error!("{error}; finishing");
         if test_loop {

@@ -107,6 +107,8 @@ pub struct Renderer {
     frames: u64,
     /// The soak run in progress (intent extras or a Game Loop test), fed each frame.
     pub soak: Option<crate::soak::Soak>,
+    /// The activity's cache directory: the pipeline cache lives there.
+    pub cache_dir: Option<PathBuf>,
 }
 
 impl Renderer {
@@ -121,6 +123,7 @@ impl Renderer {
             driver: FrameDriver::new(Clock::INTERACTIVE).with_alloc_counter(allocations),
             frames: 0,
             soak: None,
+            cache_dir: None,
         }
     }
 
@@ -173,7 +176,11 @@ impl Renderer {
                 .create_surface(AndroidWindow(window))
                 .map_err(|e| format!("create_surface: {e}"))?,
             None => {
-                let (gpu, surface) = init_gpu(window)?;
+                let (mut gpu, surface) = init_gpu(window)?;
+                // Last launch's compiled pipelines, where the driver keeps them.
+                if let Some(dir) = &self.cache_dir {
+                    gpu.use_pipeline_cache(dir);
+                }
                 // The interactive driver: wall clock, every frame GPU-timed when it can be.
                 self.driver = FrameDriver::interactive(&gpu).with_alloc_counter(allocations);
                 self.gpu = Some(gpu);
@@ -208,6 +215,9 @@ impl Renderer {
                 t0.elapsed().as_millis()
             );
             game.gpu = Some((gg, target.format()));
+            // The first pipelines are in: kept for the next launch (again when the window
+            // goes, with the rest).
+            gpu.save_pipeline_cache();
         }
         self.target = Some(target);
         Ok(())
@@ -233,6 +243,10 @@ impl Renderer {
     pub fn drop_surface(&mut self) {
         if self.target.take().is_some() {
             log::info!("surface dropped");
+            // Every pipeline is built by now: the next launch starts from them.
+            if let Some(n) = self.gpu.as_ref().and_then(Gpu::save_pipeline_cache) {
+                log::info!("pipeline cache saved ({n} bytes)");
+            }
         }
     }
 

@@ -1,9 +1,10 @@
-//! The scene's assets read from the APK's `assets/` through the AAssetManager, all at start
+//! The scene's assets (and the scanned head) read from the APK's `assets/` through the
+//! AAssetManager, all at start
 //! (nothing is read during play), by the core's loader ([`SceneAssets::load_with`]): this
 //! file only says how to read one asset.
 
 use android_activity::ndk::asset::AssetManager;
-use dermis_core::scene::SceneAssets;
+use dermis_core::scene::{HeadLoad, SceneAssets};
 use std::ffi::CString;
 use std::io::Read;
 
@@ -18,7 +19,14 @@ fn read(am: &AssetManager, path: &str) -> Result<Vec<u8>, String> {
     Ok(bytes)
 }
 
-/// The character and every prop.
+/// The character, every prop and the showroom's scanned head (its textures' ETC2 encodings
+/// only: the APK has no JPEG decoder; a head that does not load is one logged line and no
+/// subject option, as on the desktop).
 pub fn load(am: &AssetManager) -> Result<SceneAssets, String> {
-    SceneAssets::load_with(&|path| read(am, path)).map_err(|e| e.to_string())
+    let read = |path: &str| read(am, path);
+    let mut assets = SceneAssets::load_with(&read).map_err(|e| e.to_string())?;
+    let head = HeadLoad::pending();
+    head.finish_with(&read);
+    assets.head = head;
+    Ok(assets)
 }

@@ -115,6 +115,36 @@ pub fn external_files_dir(app: &AndroidApp) -> Option<PathBuf> {
     }
 }
 
+/// The activity's cache directory (`getCacheDir()`), else `<internal data path>/cache`.
+pub fn cache_dir(app: &AndroidApp) -> Option<PathBuf> {
+    let r = with_activity(app, |env, activity| {
+        let file = get(
+            env,
+            activity,
+            jni_str!("getCacheDir"),
+            jni_sig!("()Ljava/io/File;"),
+        )?;
+        if file.is_null() {
+            return Ok(None);
+        }
+        let path = get(
+            env,
+            &file,
+            jni_str!("getAbsolutePath"),
+            jni_sig!("()Ljava/lang/String;"),
+        )?;
+        let path = env.cast_local::<JString>(path)?;
+        Ok(Some(PathBuf::from(path.try_to_string(env)?)))
+    });
+    match r {
+        Ok(Some(p)) => Some(p),
+        Ok(None) | Err(_) => {
+            log::warn!("getCacheDir over JNI gave nothing; using the internal data path");
+            app.internal_data_path().map(|d| d.join("cache"))
+        }
+    }
+}
+
 /// The display's refresh rate in Hz (`getWindowManager().getDefaultDisplay()
 /// .getRefreshRate()`), or `None` when JNI fails.
 pub fn display_refresh_rate(app: &AndroidApp) -> Option<f32> {

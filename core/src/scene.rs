@@ -41,11 +41,21 @@ impl HeadLoad {
     /// Decodes the head (albedo and normal map) into this load; a missing or bad head is
     /// logged and leaves none. A load not asked for, or done already, is left as it is.
     pub fn finish(&self, assets_dir: &Path) {
+        self.finish_with(&crate::asset::dir_reader(assets_dir));
+    }
+
+    /// [`HeadLoad::finish`] reading the files through `read` (paths relative to the assets
+    /// root: the Android app's asset manager).
+    pub fn finish_with(&self, read: &dyn Fn(&str) -> Result<Vec<u8>, String>) {
         let Some(cell) = &self.0 else { return };
         if cell.get().is_some() {
             return;
         }
-        let head = match crate::face::head::load(assets_dir, true) {
+        let maps = crate::face::head::Maps {
+            albedo: true,
+            normal: true,
+        };
+        let head = match crate::face::head::load_from(read, maps) {
             Ok(head) => Some(head),
             Err(e) => {
                 log::warn!("no scanned head in the showroom: {e}");

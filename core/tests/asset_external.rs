@@ -77,7 +77,7 @@ fn external_models_load_sensibly() {
             .unwrap();
         assert!((max_joint as usize) < model.skins[skin].joints.len());
         for t in &model.textures {
-            assert_eq!(t.rgba8.len(), (t.width * t.height * 4) as usize);
+            assert_eq!(t.rgba8().unwrap().len(), (t.width * t.height * 4) as usize);
         }
     }
 }

@@ -90,7 +90,7 @@ fn external_buffer_and_texture_fixture() {
     let tex = &m.textures[t];
     assert_eq!((tex.width, tex.height), (4, 2));
     assert!(tex.srgb);
-    assert_eq!(&tex.rgba8[..4], &[200, 150, 120, 255]);
+    assert_eq!(&tex.rgba8().unwrap()[..4], &[200, 150, 120, 255]);
 }
 
 #[test]

@@ -10,7 +10,7 @@ use dermis_core::shading::{material::SKIN1, ShadingModel};
 use dermis_core::still::{Shot, StillRenderer};
 use serde_json::json;
 
-use crate::cmd::args::{check_out_file, parse_bench_frames, parse_rounds};
+use crate::cmd::args::{check_out_dir, check_out_file, parse_bench_frames, parse_rounds};
 use crate::cmd::gputime::{blob_shadow_coverage, frame_close_up, time_blob_shadows, time_models};
 use crate::cmd::progress::Progress;
 use crate::cmd::stats::{median, percentile, ratio_ci};
@@ -41,10 +41,20 @@ pub enum BenchKind {
         /// Print JSON instead of the table.
         #[arg(long)]
         json: bool,
-        /// Only the time to first frame and its breakdown (no CPU or GPU rounds).
+        /// Only the time to first frame and its breakdown (no CPU or GPU rounds), measured
+        /// over two launches (two processes) sharing a fresh pipeline cache: the first builds
+        /// every pipeline and saves the cache, the second starts from it; prints both and the
+        /// ratio second / first.
         #[arg(long)]
         first_frame_only: bool,
+        /// With --first-frame-only: one launch in this process, its pipeline cache kept in
+        /// this directory (loaded, then saved once every pipeline is built).
+        #[arg(long, requires = "first_frame_only")]
+        pipeline_cache: Option<PathBuf>,
     },
+    /// The scene's textures loaded and uploaded three ways (block encodings as stored, ETC2
+    /// decoded on the CPU, the PNG/JPEG sources decoded): CPU time and GPU bytes of each.
+    Textures(crate::cmd::bench_textures::TexturesArgs),
     /// The accuracy-vs-time table: errors against Monte Carlo, GPU cost, shader size.
     Shading(crate::cmd::bench_shading::ShadingArgs),
     /// GPU and CPU time saved by effect scheduling (tier by coverage and light), on/off ratios.
@@ -61,11 +71,97 @@ pub fn run(args: BenchArgs) -> Result<(), String> {
             out,
             json,
             first_frame_only,
-        } => frame(rounds, frames, out, json, first_frame_only),
+            pipeline_cache,
+        } => match (first_frame_only, pipeline_cache) {
+            (true, None) => two_launches(out, json),
+            (first_frame_only, cache) => frame(rounds, frames, out, json, first_frame_only, cache),
+        },
+        BenchKind::Textures(args) => crate::cmd::bench_textures::run(args),
         BenchKind::Shading(args) => crate::cmd::bench_shading::run(args),
         BenchKind::Effects(args) => crate::cmd::bench_effects::run(args),
         BenchKind::Face(args) => crate::cmd::bench_face::run(args),
     }
+}
+
+/// `--first-frame-only`: two launches of this program, each a process of its own, sharing a
+/// pipeline cache directory made fresh for them (and removed after).
+fn two_launches(out: Option<PathBuf>, print_json: bool) -> Result<(), String> {
+    if let Some(path) = &out {
+        check_out_file(path, Some("json"))?;
+    }
+    let dir = std::env::temp_dir().join(format!("dermis-pipeline-cache-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let exe = std::env::current_exe().map_err(|e| format!("cannot find this program: {e}"))?;
+    let mut launches = Vec::new();
+    for launch in 1..=2 {
+        let run = std::process::Command::new(&exe)
+            .args([
+                "bench",
+                "frame",
+                "--first-frame-only",
+                "--json",
+                "--pipeline-cache",
+            ])
+            .arg(&dir)
+            .stderr(std::process::Stdio::inherit())
+            .output()
+            .map_err(|e| format!("launch {launch}: {e}"))?;
+        if !run.status.success() {
+            let _ = std::fs::remove_dir_all(&dir);
+            return Err(format!("launch {launch} failed ({})", run.status));
+        }
+        let report: serde_json::Value = serde_json::from_slice(&run.stdout)
+            .map_err(|e| format!("launch {launch}: not a report: {e}"))?;
+        launches.push(report);
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+    let ms = |r: &serde_json::Value, k: &str| r["first_frame"][k].as_f64().unwrap_or(f64::NAN);
+    let total = |r: &serde_json::Value| r["time_to_first_frame_ms"].as_f64().unwrap_or(f64::NAN);
+    let ratio = total(&launches[1]) / total(&launches[0]);
+    let render_ratio = ms(&launches[1], "first_render_ms") / ms(&launches[0], "first_render_ms");
+    let ready_ratio =
+        ms(&launches[1], "everything_ready_ms") / ms(&launches[0], "everything_ready_ms");
+    let report = json!({
+        "launches": launches,
+        "second_over_first": {
+            "time_to_first_frame": ratio,
+            "first_render": render_ratio,
+            "everything_ready": ready_ratio,
+        },
+        "mesa_shader_cache_disabled": std::env::var("MESA_SHADER_CACHE_DISABLE").is_ok_and(|v| v == "true" || v == "1"),
+    });
+    let text = serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?;
+    if let Some(path) = &out {
+        std::fs::write(path, &text).map_err(|e| format!("{}: {e}", path.display()))?;
+    }
+    if print_json {
+        println!("{text}");
+        return Ok(());
+    }
+    println!(
+        "adapter: {}",
+        launches[0]["adapter"].as_str().unwrap_or("?")
+    );
+    for (i, r) in launches.iter().enumerate() {
+        println!(
+            "launch {} (pipeline cache {}): time to first frame {:.0} ms (device {:.0}, first \
+             pipeline and scene upload {:.0}, first frame {:.0}); every pipeline ready at {:.0}; \
+             textures on the GPU {:.1} MiB",
+            i + 1,
+            r["pipeline_cache"]["state"].as_str().unwrap_or("?"),
+            total(r),
+            ms(r, "device_ms"),
+            ms(r, "pipelines_ms"),
+            ms(r, "first_render_ms"),
+            ms(r, "everything_ready_ms"),
+            r["texture_bytes"].as_f64().unwrap_or(f64::NAN) / (1 << 20) as f64,
+        );
+    }
+    println!(
+        "second / first: time to first frame {ratio:.3}, first frame {render_ratio:.3}, every \
+         pipeline ready {ready_ratio:.3}"
+    );
+    Ok(())
 }
 
 fn frame(
@@ -74,9 +170,13 @@ fn frame(
     out: Option<PathBuf>,
     print_json: bool,
     first_frame_only: bool,
+    pipeline_cache: Option<PathBuf>,
 ) -> Result<(), String> {
     if let Some(path) = &out {
         check_out_file(path, Some("json"))?;
+    }
+    if let Some(dir) = &pipeline_cache {
+        check_out_dir(dir)?;
     }
     // The game's own start-up, as the window runs it: the assets, the device, the tables,
     // the game's GPU objects (the player's model's pipeline now, the others' on the background
@@ -100,7 +200,10 @@ fn frame(
         shading: Some(first_model),
         head: true,
     });
-    let gpu = Gpu::headless().map_err(|e| e.to_string())?;
+    let mut gpu = Gpu::headless().map_err(|e| e.to_string())?;
+    if let Some(dir) = &pipeline_cache {
+        gpu.use_pipeline_cache(dir);
+    }
     let device_ms = split();
     let (assets, mut session) = loading.wait()?;
     // Whatever of the load the device did not cover.
@@ -131,7 +234,14 @@ fn frame(
         .map_err(|e| format!("second frame: {e:?}"))?;
     game_gpu.finish_loading();
     let all_pipelines_ms = start.elapsed().as_secs_f64() * 1e3;
+    let texture_bytes = dermis_core::render::uploaded_bytes();
     drop(game_gpu);
+    let cache_state = match &gpu.pipeline_cache {
+        None => "none",
+        Some(c) if c.loaded => "loaded",
+        Some(_) => "empty",
+    };
+    let cache_saved = gpu.save_pipeline_cache();
     let breakdown = json!({
         "load_ms": load_ms,
         "device_ms": device_ms,
@@ -153,6 +263,8 @@ fn frame(
             "adapter": gpu.adapter_name(),
             "time_to_first_frame_ms": first_frame_ms,
             "first_frame": breakdown,
+            "texture_bytes": texture_bytes,
+            "pipeline_cache": {"state": cache_state, "saved_bytes": cache_saved},
         });
         let text = serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?;
         if let Some(path) = &out {
@@ -163,6 +275,7 @@ fn frame(
         } else {
             println!("adapter: {}", gpu.adapter_name());
             println!("time to first frame: {first_frame_ms:.0} ms ({breakdown_text} ms)");
+            println!("textures on the GPU: {texture_bytes} bytes; pipeline cache: {cache_state}");
         }
         return Ok(());
     }

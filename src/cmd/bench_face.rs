@@ -30,8 +30,22 @@ pub fn default_cache() -> PathBuf {
     PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/tools/mitsuba/face"))
 }
 
+/// ꟻLIP's mean error over the head's pixels, on the pair tone-mapped at `exposure`; `None`
+/// in a build without the `flip` feature (ꟻLIP is a C++ library: the default build leaves
+/// it out, `cargo build --release --features flip` and CI build it).
+#[cfg(not(feature = "flip"))]
+pub fn flip_mean(_: &FloatImage, _: &Reference, _: f32, _: &[f32]) -> Option<f64> {
+    None
+}
+
 /// ꟻLIP's mean error over the head's pixels, on the pair tone-mapped at `exposure`.
-pub fn flip_mean(model: &FloatImage, reference: &Reference, exposure: f32, alpha: &[f32]) -> f64 {
+#[cfg(feature = "flip")]
+pub fn flip_mean(
+    model: &FloatImage,
+    reference: &Reference,
+    exposure: f32,
+    alpha: &[f32],
+) -> Option<f64> {
     let (w, h) = (model.width, model.height);
     let r = nv_flip::FlipImageRgb8::with_data(w, h, &tone_map(&reference.full, exposure));
     let t = nv_flip::FlipImageRgb8::with_data(w, h, &tone_map(model, exposure));
@@ -43,7 +57,7 @@ pub fn flip_mean(model: &FloatImage, reference: &Reference, exposure: f32, alpha
             n += 1;
         }
     }
-    sum / n.max(1) as f64
+    Some(sum / n.max(1) as f64)
 }
 
 /// The exposure the pairs are tone-mapped at: the front reference's mean over the head to
@@ -165,7 +179,7 @@ pub fn run(args: FaceArgs) -> Result<(), String> {
                 "flip": f, "block_channels": s.count,
             })).collect::<Vec<_>>(),
             "face": per.iter().map(|(_, s, _)| s.mean_abs_ln).sum::<f64>() / per.len() as f64,
-            "flip": per.iter().map(|(_, _, f)| f).sum::<f64>() / per.len() as f64,
+            "flip": per.iter().map(|(_, _, f)| *f).sum::<Option<f64>>().map(|s| s / per.len() as f64),
         })).collect::<Vec<_>>(),
     });
     let mut md = String::from(
@@ -176,10 +190,11 @@ pub fn run(args: FaceArgs) -> Result<(), String> {
         "| *reference rel. SE* | {:.3} | {:.3} | {:.3} | | | |\n",
         noise[0].1, noise[1].1, noise[2].1
     );
+    let flip = |f: &Option<f64>| f.map_or("–".to_string(), |f| format!("{f:.3}"));
     for (m, per) in &rows {
         let face = per.iter().map(|(_, s, _)| s.mean_abs_ln).sum::<f64>() / per.len() as f64;
         md += &format!(
-            "| {} | {:.3} | {:.3} | {:.3} | {:.3} | {:.2} / {:.2} / {:.2} | {:.3} / {:.3} / {:.3} |\n",
+            "| {} | {:.3} | {:.3} | {:.3} | {:.3} | {:.2} / {:.2} / {:.2} | {} / {} / {} |\n",
             m.name(),
             per[0].1.mean_abs_ln,
             per[1].1.mean_abs_ln,
@@ -188,9 +203,9 @@ pub fn run(args: FaceArgs) -> Result<(), String> {
             per[0].1.integrated,
             per[1].1.integrated,
             per[2].1.integrated,
-            per[0].2,
-            per[1].2,
-            per[2].2
+            flip(&per[0].2),
+            flip(&per[1].2),
+            flip(&per[2].2)
         );
     }
     let write = |name: &str, text: &str| {
@@ -222,4 +237,23 @@ fn save_png(path: &std::path::Path, image: &FloatImage, exposure: f32) -> Result
         image::ExtendedColorType::Rgb8,
     )
     .map_err(|e| format!("{}: {e}", path.display()))
+}
+
+#[cfg(all(test, feature = "flip"))]
+mod tests {
+    use super::*;
+
+    /// ꟻLIP (the `flip` feature, built and run in CI): a pair that is the same image scores 0,
+    /// a darker one more.
+    #[test]
+    fn flip_scores_a_difference() {
+        let (w, h) = (32, 32);
+        let px =
+            |v: f32| FloatImage::new(w, h, vec![[v, v * 0.8, v * 0.6]; (w * h) as usize]).unwrap();
+        let alpha = vec![1.0; (w * h) as usize];
+        let reference = Reference::from_seeds(&px(0.5), &px(0.5), &alpha, 4).unwrap();
+        let same = flip_mean(&px(0.5), &reference, 1.0, &alpha).unwrap();
+        let darker = flip_mean(&px(0.2), &reference, 1.0, &alpha).unwrap();
+        assert!(same < 1e-6 && darker > 0.05, "{same} {darker}");
+    }
 }

@@ -3,6 +3,7 @@ pub mod bench;
 pub mod bench_effects;
 pub mod bench_face;
 pub mod bench_shading;
+pub mod bench_textures;
 pub mod chart;
 pub mod gputime;
 pub mod lut;

@@ -32,6 +32,9 @@ pub struct PlayArgs {
     pub seed: u64,
     #[arg(long, value_parser = parse_model, help = shading_help("Shading model of the character"))]
     pub shading: Option<ShadingModel>,
+    /// A glTF character instead of the project's own (loaded as the window loads it).
+    #[arg(long)]
+    pub model: Option<PathBuf>,
     /// Frame size WxH.
     #[arg(long, default_value = "1280x720", value_parser = parse_size, allow_hyphen_values = true)]
     pub size: (u32, u32),
@@ -68,7 +71,8 @@ pub fn run(args: PlayArgs) -> Result<(), String> {
     }
     let mut progress = Progress::new("play", args.frames);
     progress.begin("GPU device and pipelines");
-    let assets = SceneAssets::load(&crate::paths::assets_dir(), None).map_err(|e| e.to_string())?;
+    let assets = SceneAssets::load(&crate::paths::assets_dir(), args.model.as_deref())
+        .map_err(|e| e.to_string())?;
     let gpu = Gpu::headless().map_err(|e| e.to_string())?;
     let (w, h) = args.size;
     let mut gg = GameGpu::new(&gpu, OFFSCREEN_FORMAT, &assets, ShadingModel::DEFAULT)?;

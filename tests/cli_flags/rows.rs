@@ -117,6 +117,7 @@ pub const ROWS: &[Row] = &[
     row("play", "fps", NUM),
     row("play", "screenshots", Kind::OutDir),
     row("play", "json", Kind::Switch),
+    row("play", "model", Kind::InFile),
     row("render", "shading", Kind::Name),
     row("render", "material", Kind::Name),
     with("render", "model", Kind::InFile, RENDER_OUT),
@@ -181,6 +182,14 @@ pub const ROWS: &[Row] = &[
     row("bench frame", "out", Kind::OutFile { ext: Some("json") }),
     row("bench frame", "first-frame-only", Kind::Switch),
     row("bench frame", "json", Kind::Switch),
+    with(
+        "bench frame",
+        "pipeline-cache",
+        Kind::OutDir,
+        &["--first-frame-only"],
+    ),
+    row("bench textures", "rounds", Kind::Count),
+    row("bench textures", "json", Kind::Switch),
     row("bench face", "out", Kind::OutDir),
     with(
         "bench face",

@@ -10,6 +10,7 @@ mod android_test;
 mod apk;
 mod assets;
 mod device_run;
+mod textures;
 mod ui_atlas;
 
 fn main() {

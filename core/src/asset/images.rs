@@ -25,12 +25,16 @@ pub(crate) fn decode_image(bytes: &[u8], srgb: bool, what: &str) -> Result<Textu
         .map_err(|e| format!("{what}: cannot decode image: {e}"))?;
     let rgba = img.into_rgba8();
     let (width, height) = rgba.dimensions();
-    Ok(TextureImage {
-        width,
-        height,
-        rgba8: rgba.into_raw(),
-        srgb,
-    })
+    Ok(TextureImage::rgba(width, height, rgba.into_raw(), srgb))
+}
+
+/// An encoded image's size from its header, without decoding it.
+pub(crate) fn image_dimensions(bytes: &[u8], what: &str) -> Result<(u32, u32), String> {
+    image::ImageReader::new(Cursor::new(bytes))
+        .with_guessed_format()
+        .map_err(|e| format!("{what}: cannot read image: {e}"))?
+        .into_dimensions()
+        .map_err(|e| format!("{what}: cannot read image: {e}"))
 }
 
 #[cfg(test)]
@@ -49,8 +53,9 @@ mod tests {
         img.write_to(&mut Cursor::new(&mut png), image::ImageFormat::Png)
             .unwrap();
         let t = decode_image(&png, true, "image 0").unwrap();
-        assert_eq!((t.width, t.height, t.rgba8.len()), (3, 2, 24));
-        assert_eq!(&t.rgba8[..4], &[10, 20, 30, 255]);
+        let px = t.rgba8().unwrap();
+        assert_eq!((t.width, t.height, px.len()), (3, 2, 24));
+        assert_eq!(&px[..4], &[10, 20, 30, 255]);
         assert!(t.srgb);
     }
 }

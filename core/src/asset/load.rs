@@ -8,14 +8,14 @@ use std::path::Path;
 
 use super::accessor::{view_bytes, Buffers};
 use super::animation::load_animation;
-use super::images::decode_image;
+use super::compressed::{declares_skin_mask, encoded_texture, sidecar_path};
 use super::limits::{
     MAX_EXTERNAL_FILE_BYTES, MAX_FILE_BYTES, MAX_TOTAL_BUFFER_BYTES, MAX_TOTAL_IMAGE_BYTES,
 };
 use super::nodes::{load_nodes, load_skin, scene_roots};
 use super::uri::{resolve_uri, UriRef};
 use super::vertices::{load_mesh, Totals};
-use super::{glb, AssetError, Material, Model, TextureImage};
+use super::{glb, AssetError, Family, Material, Model, Texels, TextureImage, TextureRole};
 
 /// Loads a .glb or .gltf file; external buffers/images are read from the file's folder.
 pub fn load_gltf(path: &Path) -> Result<Model, AssetError> {
@@ -32,8 +32,15 @@ pub fn load_gltf(path: &Path) -> Result<Model, AssetError> {
         )));
     }
     let bytes = std::fs::read(path).map_err(|e| err(format!("cannot read: {e}")))?;
-    let dir = path.parent().unwrap_or(Path::new(".")).to_path_buf();
-    let resolve = move |uri: &str| -> Result<Vec<u8>, String> {
+    let resolve = dir_reader(path.parent().unwrap_or(Path::new(".")));
+    load_gltf_slice(&bytes, &file, &resolve)
+}
+
+/// Reads files under `dir` by their relative path (regular files up to the loader's size
+/// limit): what a model's external files, and its textures' encodings, are read with.
+pub fn dir_reader(dir: &Path) -> impl Fn(&str) -> Result<Vec<u8>, String> {
+    let dir = dir.to_path_buf();
+    move |uri: &str| -> Result<Vec<u8>, String> {
         let p = dir.join(uri);
         let m = std::fs::metadata(&p).map_err(|e| match e.kind() {
             std::io::ErrorKind::NotFound => format!("external file {uri:?} not found"),
@@ -49,8 +56,7 @@ pub fn load_gltf(path: &Path) -> Result<Model, AssetError> {
             ));
         }
         std::fs::read(&p).map_err(|e| format!("cannot read external file {uri:?}: {e}"))
-    };
-    load_gltf_slice(&bytes, &file, &resolve)
+    }
 }
 
 /// Loads a .glb or .gltf held in memory. `name` is used in errors and as [`Model::source`];
@@ -114,7 +120,7 @@ fn extension_supported(ext: &str) -> bool {
 
 fn load(
     bytes: &[u8],
-    _name: &str,
+    name: &str,
     resolve: &dyn Fn(&str) -> Result<Vec<u8>, String>,
 ) -> Result<Model, String> {
     if bytes.is_empty() {
@@ -189,7 +195,7 @@ fn load(
         }
     }
 
-    let (materials, textures) = load_materials(&doc, &buffers, resolve)?;
+    let (materials, textures) = load_materials(&doc, &buffers, name, resolve)?;
 
     let mut animations = Vec::with_capacity(root.animations.len());
     for ai in 0..root.animations.len() {
@@ -197,7 +203,7 @@ fn load(
     }
 
     Ok(Model {
-        source: _name.to_owned(),
+        source: name.to_owned(),
         nodes,
         roots,
         meshes,
@@ -263,32 +269,13 @@ fn load_buffers<'a>(
     Ok(Buffers { data })
 }
 
-/// The material `extras` entry declaring the base-colour texture's alpha a skin mask
-/// (`{"dermisSkinMask": "baseColorAlpha"}`; the project's character has it, see `xtask assets`).
-pub const SKIN_MASK_EXTRAS: (&str, &str) = ("dermisSkinMask", "baseColorAlpha");
-
-/// Whether material `mi` declares its base-colour alpha a skin mask.
-fn declares_skin_mask(mat: &gltf::Material<'_>, mi: usize) -> bool {
-    let Some(raw) = mat.extras() else {
-        return false;
-    };
-    let (key, value) = SKIN_MASK_EXTRAS;
-    let extras: serde_json::Value = serde_json::from_str(raw.get()).unwrap_or_default();
-    match extras.get(key) {
-        None => false,
-        Some(v) if v.as_str() == Some(value) => true,
-        Some(v) => {
-            log::warn!("material {mi}: extras.{key} = {v} is not \"{value}\"; treated as skin");
-            false
-        }
-    }
-}
-
 /// Makes every texel opaque: the engine draws opaque, and the character shader reads the
 /// base colour's alpha as the skin mask, so a texture without a declared mask is all skin.
 fn opaque(mut tex: TextureImage) -> TextureImage {
-    for px in tex.rgba8.chunks_exact_mut(4) {
-        px[3] = 255;
+    if let Texels::Rgba8(px) = &mut tex.texels {
+        for px in px.chunks_exact_mut(4) {
+            px[3] = 255;
+        }
     }
     tex
 }
@@ -296,14 +283,16 @@ fn opaque(mut tex: TextureImage) -> TextureImage {
 fn load_materials(
     doc: &gltf::Document,
     buffers: &Buffers<'_>,
+    name: &str,
     resolve: &dyn Fn(&str) -> Result<Vec<u8>, String>,
 ) -> Result<(Vec<Material>, Vec<TextureImage>), String> {
     let root = doc.as_json();
     let mut materials = Vec::with_capacity(root.materials.len());
     let mut textures: Vec<TextureImage> = Vec::new();
-    // (image, alpha kept as the skin mask) -> texture slot.
-    let mut by_image: HashMap<(usize, bool), usize> = HashMap::new();
+    // (image, role) -> texture slot.
+    let mut by_image: HashMap<(usize, TextureRole), usize> = HashMap::new();
     let mut image_bytes: u64 = 0;
+    let file = name.rsplit(['/', '\\']).next().unwrap_or(name);
     for mat in doc.materials() {
         let mi = mat.index().unwrap_or(0);
         let pbr = mat.pbr_metallic_roughness();
@@ -326,20 +315,23 @@ fn load_materials(
                 .map(|t| t.source.value())
                 .filter(|&ii| ii < root.images.len())
                 .ok_or_else(|| format!("material {mi}: texture {ti} has no valid image source"))?;
-            let masked = declares_skin_mask(&mat, mi);
-            let slot = match by_image.get(&(ii, masked)) {
+            let role = match declares_skin_mask(&mat, mi) {
+                true => TextureRole::BaseColorMasked,
+                false => TextureRole::BaseColor,
+            };
+            let slot = match by_image.get(&(ii, role)) {
                 Some(&s) => s,
                 None => {
-                    let tex = load_image(doc, buffers, resolve, ii)?;
-                    let tex = if masked { tex } else { opaque(tex) };
-                    image_bytes = image_bytes.saturating_add(tex.rgba8.len() as u64);
+                    let tex = load_image(doc, buffers, resolve, ii, role, file)?;
+                    let tex = if role.alpha() { tex } else { opaque(tex) };
+                    image_bytes = image_bytes.saturating_add(tex.bytes());
                     if image_bytes > MAX_TOTAL_IMAGE_BYTES {
                         return Err(format!(
                             "decoded images above the limit {MAX_TOTAL_IMAGE_BYTES} bytes"
                         ));
                     }
                     textures.push(tex);
-                    by_image.insert((ii, masked), textures.len() - 1);
+                    by_image.insert((ii, role), textures.len() - 1);
                     textures.len() - 1
                 }
             };
@@ -355,28 +347,45 @@ fn load_materials(
     Ok((materials, textures))
 }
 
-fn load_image(
+/// Image `index`'s bytes as the file holds them (PNG, JPEG or KTX2).
+fn image_source(
     doc: &gltf::Document,
     buffers: &Buffers<'_>,
     resolve: &dyn Fn(&str) -> Result<Vec<u8>, String>,
     index: usize,
-) -> Result<TextureImage, String> {
+) -> Result<Vec<u8>, String> {
     let what = format!("image {index}");
     let image = doc
         .images()
         .nth(index)
         .ok_or_else(|| format!("missing {what}"))?;
     match image.source() {
-        gltf::image::Source::View { view, .. } => {
-            let bytes = view_bytes(buffers, &view).map_err(|e| format!("{what}: {e}"))?;
-            decode_image(bytes, true, &what)
-        }
+        gltf::image::Source::View { view, .. } => view_bytes(buffers, &view)
+            .map(<[u8]>::to_vec)
+            .map_err(|e| format!("{what}: {e}")),
         gltf::image::Source::Uri { uri, .. } => {
-            let bytes = match resolve_uri(uri).map_err(|e| format!("{what}: {e}"))? {
-                UriRef::Data(d) => d,
-                UriRef::Relative(p) => resolve(&p).map_err(|e| format!("{what}: {e}"))?,
-            };
-            decode_image(&bytes, true, &what)
+            match resolve_uri(uri).map_err(|e| format!("{what}: {e}"))? {
+                UriRef::Data(d) => Ok(d),
+                UriRef::Relative(p) => resolve(&p).map_err(|e| format!("{what}: {e}")),
+            }
         }
     }
+}
+
+/// Image `index` for `role`: its block encodings where `cargo xtask assets` made them beside
+/// the model file (checked against the source's
+/// hash and size) or the image is a KTX2 file itself, else the image decoded. See
+/// [`sidecar_path`].
+fn load_image(
+    doc: &gltf::Document,
+    buffers: &Buffers<'_>,
+    resolve: &dyn Fn(&str) -> Result<Vec<u8>, String>,
+    index: usize,
+    role: TextureRole,
+    file: &str,
+) -> Result<TextureImage, String> {
+    let what = format!("image {index}");
+    let source = image_source(doc, buffers, resolve, index)?;
+    let sidecar = |family: Family| sidecar_path(file, Some(index), role, family);
+    encoded_texture(&source, role, &sidecar, resolve, &what)
 }

@@ -14,13 +14,17 @@
 //! - A node with a skin needs `JOINTS_0`/`WEIGHTS_0` on every primitive of its mesh, and each
 //!   joint index (even with zero weight) must be below the skin's joint count.
 //! - Non-triangle primitives (points, lines, strips, fans) are skipped with a warning.
-//! - Only base-colour textures are decoded (RGBA8, sRGB). Materials are drawn opaque, and the
+//! - Only base-colour textures are loaded (sRGB): the image decoded to RGBA8, or, where
+//!   `cargo xtask assets` encoded it beside the model (`<file>.textures/`, see
+//!   [`compressed`]), its GPU block encodings, which the renderer uploads as they are where
+//!   the device samples them. Materials are drawn opaque, and the
 //!   alpha of a base-colour texture is the *skin mask* (255: skin, shaded by the subsurface
 //!   models; 0: cloth): kept from the file where the material's `extras` declare it
 //!   ([`SKIN_MASK_EXTRAS`]), else set to 255 (the whole material is skin).
 
 mod accessor;
 mod animation;
+pub mod compressed;
 mod error;
 mod glb;
 mod images;
@@ -33,6 +37,8 @@ pub mod tangents;
 mod uri;
 mod vertices;
 
+pub use compressed::SKIN_MASK_EXTRAS;
+pub use compressed::{BlockFormat, BlockImage, Family, TextureRole};
 pub use error::AssetError;
-pub use load::{load_gltf, load_gltf_slice, SKIN_MASK_EXTRAS};
+pub use load::{dir_reader, load_gltf, load_gltf_slice};
 pub use model::*;

@@ -105,14 +105,36 @@ pub struct Material {
     pub normal_texture: Option<usize>,
 }
 
-/// A decoded image: RGBA8, row-major, `srgb` when it holds colour (base colour textures).
-/// Alpha is the skin mask (see the [module docs](super)): 255 = skin, 0 = cloth.
+/// An image a material samples, `srgb` when it holds colour (base colour textures). Alpha is
+/// the skin mask (see the [module docs](super)): 255 = skin, 0 = cloth.
 #[derive(Clone, Debug)]
 pub struct TextureImage {
     pub width: u32,
     pub height: u32,
-    pub rgba8: Vec<u8>,
+    pub texels: Texels,
     pub srgb: bool,
+}
+
+/// What a [`TextureImage`] holds.
+#[derive(Clone, Debug)]
+pub enum Texels {
+    /// Decoded RGBA8, level 0, row-major (the renderer builds the mip chain).
+    Rgba8(Vec<u8>),
+    /// The image in GPU block formats (KTX2), each with its mip chain, in preference order:
+    /// the renderer uploads the first its device samples, else decodes one to RGBA8.
+    Blocks(Vec<std::sync::Arc<super::BlockImage>>),
+}
+
+impl TextureImage {
+    /// A decoded RGBA8 image.
+    pub fn rgba(width: u32, height: u32, rgba8: Vec<u8>, srgb: bool) -> Self {
+        Self {
+            width,
+            height,
+            texels: Texels::Rgba8(rgba8),
+            srgb,
+        }
+    }
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -10,8 +10,12 @@ use std::path::Path;
 use glam::{Mat4, Vec2, Vec3};
 
 use crate::anim::Pose;
+use crate::asset::compressed::{encoded_texture, sidecar_path};
 use crate::asset::tangents::generate_tangents;
-use crate::asset::{load_gltf, Aabb, AssetError, Model, Node, Skin, TextureImage, Transform};
+use crate::asset::{
+    dir_reader, load_gltf_slice, Aabb, AssetError, Model, Node, Skin, TextureImage, TextureRole,
+    Transform,
+};
 use crate::render::{DrawSet, FrameView, Gpu, Light, Offscreen, Renderer, RgbaImage};
 use crate::shading::{Material, ShadingModel};
 
@@ -58,30 +62,50 @@ pub fn load(assets_dir: &Path, textured: bool) -> Result<Model, AssetError> {
     )
 }
 
-/// Reads one of the head's JPEG maps (`srgb`: colour, else linear data).
-fn read_map(dir: &Path, file: &str, srgb: bool) -> Result<TextureImage, AssetError> {
-    let path = dir.join(file);
-    let bytes = std::fs::read(&path)
-        .map_err(|e| AssetError::new(path.display().to_string(), e.to_string()))?;
-    let rgba = image::load_from_memory(&bytes)
-        .map_err(|e| AssetError::new(path.display().to_string(), e.to_string()))?
-        .into_rgba8();
-    Ok(TextureImage {
-        width: rgba.width(),
-        height: rgba.height(),
-        rgba8: rgba.into_raw(),
-        srgb,
-    })
+/// The files of the head a build ships, relative to the assets root: the mesh, each map's
+/// source image and the licence (its block encodings are beside each map, see
+/// [`sidecar_path`]).
+pub fn files() -> [String; 4] {
+    [MESH_FILE, ALBEDO_FILE, NORMAL_FILE, LICENCE_FILE].map(|f| format!("{DIR}/{f}"))
 }
 
-/// Loads the head in metres as a one-joint skinned model with the maps `maps` asks for.
+/// The licence text that travels with the head.
+pub const LICENCE_FILE: &str = "LeePerrySmith_License.txt";
+
+/// One of the head's maps for `role`: its block encodings (`<map>.textures/<role>.<family>.ktx2`,
+/// made by `cargo xtask assets`) where usable, else the JPEG decoded. Where the JPEG is not
+/// there (the APK carries the encodings only) the encodings are all there is.
+fn read_map(
+    read: &dyn Fn(&str) -> Result<Vec<u8>, String>,
+    file: &str,
+    role: TextureRole,
+) -> Result<TextureImage, AssetError> {
+    let path = format!("{DIR}/{file}");
+    let source = read(&path).unwrap_or_default();
+    let sidecar = |family| sidecar_path(&path, None, role, family);
+    encoded_texture(&source, role, &sidecar, read, &path).map_err(|e| AssetError::new(&path, e))
+}
+
+/// Loads the head in metres from `assets_dir` (see [`load_from`]).
+pub fn load_with(assets_dir: &Path, maps: Maps) -> Result<Model, AssetError> {
+    load_from(&dir_reader(assets_dir), maps)
+}
+
+/// Loads the head in metres as a one-joint skinned model with the maps `maps` asks for,
+/// reading its files through `read` (a path relative to the assets root to the file's bytes:
+/// the file system, or the Android app's asset manager).
 ///
 /// The file's UVs have v up (v = 0 at the images' bottom row, as the three.js example that
 /// ships it samples them); the engine samples v down, so v is flipped here and the tangents
 /// are generated again for the flipped UVs.
-pub fn load_with(assets_dir: &Path, maps: Maps) -> Result<Model, AssetError> {
-    let dir = assets_dir.join(DIR);
-    let file = load_gltf(&dir.join(MESH_FILE))?;
+pub fn load_from(
+    read: &dyn Fn(&str) -> Result<Vec<u8>, String>,
+    maps: Maps,
+) -> Result<Model, AssetError> {
+    let mesh_path = format!("{DIR}/{MESH_FILE}");
+    let bytes = read(&mesh_path).map_err(|e| AssetError::new(&mesh_path, e))?;
+    let resolve = |uri: &str| read(&format!("{DIR}/{uri}"));
+    let file = load_gltf_slice(&bytes, &mesh_path, &resolve)?;
     let source = file.source.clone();
     let mut primitive = file
         .meshes
@@ -112,10 +136,10 @@ pub fn load_with(assets_dir: &Path, maps: Maps) -> Result<Model, AssetError> {
     primitive.material = Some(0);
     let mut textures = Vec::new();
     if maps.albedo {
-        textures.push(read_map(&dir, ALBEDO_FILE, true)?);
+        textures.push(read_map(read, ALBEDO_FILE, TextureRole::BaseColor)?);
     }
     if maps.normal {
-        textures.push(read_map(&dir, NORMAL_FILE, false)?);
+        textures.push(read_map(read, NORMAL_FILE, TextureRole::Normal)?);
     }
     let node = |mesh, skin| Node {
         name: None,

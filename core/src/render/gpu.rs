@@ -1,6 +1,9 @@
-//! Instance, adapter, device and queue.
+//! Instance, adapter, device and queue, and the pipeline cache kept with them.
 
 use std::fmt;
+use std::path::Path;
+
+use super::pipeline_cache::PipelineCacheFile;
 
 /// The GPU context every other render object is created from.
 pub struct Gpu {
@@ -10,6 +13,8 @@ pub struct Gpu {
     pub queue: wgpu::Queue,
     /// Whether TIMESTAMP_QUERY was granted (GPU timings available).
     pub timestamps: bool,
+    /// The pipeline cache kept on disk, once [`Gpu::use_pipeline_cache`] has opened it.
+    pub pipeline_cache: Option<PipelineCacheFile>,
 }
 
 #[derive(Debug)]
@@ -33,10 +38,16 @@ impl fmt::Display for GpuError {
 
 impl std::error::Error for GpuError {}
 
-/// Features dermis uses when the adapter has them.
+/// Features dermis uses when the adapter has them: GPU timings, f16 (the stability suite),
+/// the block-compressed texture families (textures are uploaded in the first family the
+/// device samples, else decoded: `texture::upload`) and the pipeline cache.
 const OPTIONAL_FEATURES: wgpu::Features = wgpu::Features::TIMESTAMP_QUERY
     .union(wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS)
-    .union(wgpu::Features::SHADER_F16);
+    .union(wgpu::Features::SHADER_F16)
+    .union(wgpu::Features::TEXTURE_COMPRESSION_BC)
+    .union(wgpu::Features::TEXTURE_COMPRESSION_ETC2)
+    .union(wgpu::Features::TEXTURE_COMPRESSION_ASTC)
+    .union(wgpu::Features::PIPELINE_CACHE);
 
 impl Gpu {
     /// The limits of a mid-range Android phone: Khronos' Vulkan profile `VP_ANDROID_baseline_2022`
@@ -203,7 +214,31 @@ impl Gpu {
             device,
             queue,
             timestamps,
+            pipeline_cache: None,
         })
+    }
+
+    /// Keeps the device's pipelines in `dir` (the app's cache directory: the desktop's
+    /// [`super::pipeline_cache::desktop_dir`], the activity's cache dir on Android): the cache
+    /// there is loaded now (a bad or foreign file is one logged line and an empty cache) and
+    /// every pipeline built from now on passes through it; [`Gpu::save_pipeline_cache`]
+    /// writes it back. Nothing where the adapter keeps no cache (GL, lavapipe without
+    /// `PIPELINE_CACHE`).
+    pub fn use_pipeline_cache(&mut self, dir: &Path) {
+        self.pipeline_cache = PipelineCacheFile::open(&self.device, &self.adapter.get_info(), dir);
+    }
+
+    /// Writes the pipeline cache (after the pipelines are built, and at exit): its size in
+    /// bytes, `None` without a cache; a failure is one logged line.
+    pub fn save_pipeline_cache(&self) -> Option<usize> {
+        let cache = self.pipeline_cache.as_ref()?;
+        match cache.save() {
+            Ok(n) => Some(n),
+            Err(e) => {
+                log::warn!("pipeline cache not saved: {e}");
+                None
+            }
+        }
     }
 
     /// "name (backend)" of the adapter.

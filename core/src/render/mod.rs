@@ -15,6 +15,7 @@ mod mesh;
 mod model_gpu;
 mod offscreen;
 mod penumbra;
+pub mod pipeline_cache;
 mod pipelines;
 mod props;
 mod readback;
@@ -49,6 +50,6 @@ pub use shadow_map::{
 pub use sss_pass::SPLIT_FORMAT;
 pub use surface::{choose_format, FrameStatus, SurfaceOptions, SurfaceTarget};
 pub use targets::{Targets, DEPTH_FORMAT, MSAA_SAMPLES};
-pub use texture::f32_to_f16;
+pub use texture::{f32_to_f16, upload as upload_texture, upload_bytes, uploaded_bytes};
 pub use timer::{PassTimer, TimerRing};
 pub use ui::{ui_shader_source, ui_vertex_layout, UiRenderer};

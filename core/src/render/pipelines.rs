@@ -348,6 +348,6 @@ fn pipeline(
             targets,
         }),
         multiview_mask: None,
-        cache: None,
+        cache: super::pipeline_cache::for_device(device).as_ref(),
     })
 }

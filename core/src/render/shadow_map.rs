@@ -197,7 +197,7 @@ fn depth_only(
         multisample: Default::default(),
         fragment: None,
         multiview_mask: None,
-        cache: None,
+        cache: super::pipeline_cache::for_device(device).as_ref(),
     })
 }
 

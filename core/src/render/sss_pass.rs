@@ -114,7 +114,7 @@ impl SssPass {
                 })],
             }),
             multiview_mask: None,
-            cache: None,
+            cache: super::pipeline_cache::for_device(device).as_ref(),
         });
         let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("subsurface spread"),

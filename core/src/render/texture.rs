@@ -1,25 +1,184 @@
-//! Texture upload with a full CPU-built mip chain (filtered in linear light for sRGB data).
+//! Texture upload: GPU block-compressed images as they are stored where the device samples
+//! their format, else decoded to RGBA8; decoded images with a full CPU-built mip chain
+//! (filtered in linear light for sRGB data). Every texture made here is counted
+//! ([`uploaded_bytes`]).
 
-use crate::asset::TextureImage;
+use std::sync::atomic::{AtomicU64, Ordering};
 
-/// Uploads `image` with all mip levels and returns its view.
+use crate::asset::compressed::{full_chain, level_size, mip_chain};
+use crate::asset::{BlockFormat, BlockImage, Family, Texels, TextureImage};
+
+/// Bytes of every texture created through this module since the process started, all mip
+/// levels counted at their size on the GPU (block formats at their block size).
+static UPLOADED: AtomicU64 = AtomicU64::new(0);
+
+/// What the renderer has uploaded as textures (bytes, all levels), process-wide: read it
+/// before and after a load to know what that load put on the GPU.
+pub fn uploaded_bytes() -> u64 {
+    UPLOADED.load(Ordering::Relaxed)
+}
+
+fn count(bytes: u64) {
+    UPLOADED.fetch_add(bytes, Ordering::Relaxed);
+}
+
+/// The device feature that lets it sample `family`.
+pub fn family_feature(family: Family) -> wgpu::Features {
+    match family {
+        Family::Bc => wgpu::Features::TEXTURE_COMPRESSION_BC,
+        Family::Etc2 => wgpu::Features::TEXTURE_COMPRESSION_ETC2,
+        Family::Astc => wgpu::Features::TEXTURE_COMPRESSION_ASTC,
+    }
+}
+
+/// wgpu's format for a block format.
+pub fn block_format(format: BlockFormat, srgb: bool) -> wgpu::TextureFormat {
+    use wgpu::TextureFormat as F;
+    match (format, srgb) {
+        (BlockFormat::Bc1, false) => F::Bc1RgbaUnorm,
+        (BlockFormat::Bc1, true) => F::Bc1RgbaUnormSrgb,
+        (BlockFormat::Bc3, false) => F::Bc3RgbaUnorm,
+        (BlockFormat::Bc3, true) => F::Bc3RgbaUnormSrgb,
+        (BlockFormat::Bc7, false) => F::Bc7RgbaUnorm,
+        (BlockFormat::Bc7, true) => F::Bc7RgbaUnormSrgb,
+        (BlockFormat::Etc2Rgb8, false) => F::Etc2Rgb8Unorm,
+        (BlockFormat::Etc2Rgb8, true) => F::Etc2Rgb8UnormSrgb,
+        (BlockFormat::Etc2Rgba8, false) => F::Etc2Rgba8Unorm,
+        (BlockFormat::Etc2Rgba8, true) => F::Etc2Rgba8UnormSrgb,
+        (BlockFormat::Astc4x4, srgb) => F::Astc {
+            block: wgpu::AstcBlock::B4x4,
+            channel: match srgb {
+                true => wgpu::AstcChannel::UnormSrgb,
+                false => wgpu::AstcChannel::Unorm,
+            },
+        },
+    }
+}
+
+/// The encoding of `image` that `device` samples as it is stored, if any: the first of its
+/// block encodings whose family the device has (and whose size is whole blocks).
+pub fn native_encoding<'a>(
+    device: &wgpu::Device,
+    image: &'a TextureImage,
+) -> Option<&'a BlockImage> {
+    let Texels::Blocks(encodings) = &image.texels else {
+        return None;
+    };
+    let features = device.features();
+    encodings
+        .iter()
+        .find(|e| {
+            features.contains(family_feature(e.format.family()))
+                && e.width % 4 == 0
+                && e.height % 4 == 0
+        })
+        .map(|e| &**e)
+}
+
+/// The bytes [`upload`] puts on `device`'s GPU for `image`, all levels: a native encoding's
+/// blocks, else 4 a texel of the decoded chain (a block encoding's own levels, or the full
+/// chain built from a decoded image).
+pub fn upload_bytes(device: &wgpu::Device, image: &TextureImage) -> u64 {
+    if let Some(native) = native_encoding(device, image) {
+        return native.bytes();
+    }
+    let levels = match &image.texels {
+        Texels::Blocks(e) => e.first().map_or(1, |e| e.levels.len()),
+        Texels::Rgba8(_) => full_chain(image.width, image.height),
+    };
+    (0..levels)
+        .map(|i| {
+            let (w, h) = level_size(image.width, image.height, i);
+            u64::from(w) * u64::from(h) * 4
+        })
+        .sum()
+}
+
+/// Uploads `image` with all mip levels and returns its view: a block encoding the device
+/// samples as it is, else the image decoded to RGBA8 (a block encoding's own levels, or a
+/// mip chain built from the decoded image).
 pub fn upload(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
     image: &TextureImage,
     label: &str,
 ) -> wgpu::TextureView {
-    let levels = mip_count(image.width, image.height);
-    let format = if image.srgb {
-        wgpu::TextureFormat::Rgba8UnormSrgb
-    } else {
-        wgpu::TextureFormat::Rgba8Unorm
+    let encodings = match &image.texels {
+        Texels::Rgba8(rgba) => return upload_rgba8(device, queue, image, rgba, label),
+        Texels::Blocks(encodings) => encodings,
     };
-    let texture = device.create_texture(&wgpu::TextureDescriptor {
+    if let Some(native) = native_encoding(device, image) {
+        return upload_blocks(device, queue, native, label);
+    }
+    let decoded = encodings
+        .first()
+        .map_or(Err("no encoding".to_string()), |e| {
+            (0..e.levels.len())
+                .map(|i| e.decode_level(i))
+                .collect::<Result<Vec<_>, _>>()
+        });
+    let format = rgba8_format(image.srgb);
+    match decoded {
+        Ok(levels) => {
+            log::debug!(
+                "{label}: {:?} decoded to RGBA8 (the device does not sample it)",
+                encodings[0].format
+            );
+            upload_levels(
+                device,
+                queue,
+                &levels,
+                (image.width, image.height),
+                format,
+                label,
+            )
+        }
+        Err(e) => {
+            log::warn!("{label}: cannot decode ({e}); drawn white");
+            upload_levels(device, queue, &[vec![255; 4]], (1, 1), format, label)
+        }
+    }
+}
+
+fn rgba8_format(srgb: bool) -> wgpu::TextureFormat {
+    match srgb {
+        true => wgpu::TextureFormat::Rgba8UnormSrgb,
+        false => wgpu::TextureFormat::Rgba8Unorm,
+    }
+}
+
+/// A decoded image with the mip chain built here.
+fn upload_rgba8(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    image: &TextureImage,
+    rgba: &[u8],
+    label: &str,
+) -> wgpu::TextureView {
+    let levels = mip_chain(rgba, image.width, image.height, image.srgb);
+    let format = rgba8_format(image.srgb);
+    upload_levels(
+        device,
+        queue,
+        &levels,
+        (image.width, image.height),
+        format,
+        label,
+    )
+}
+
+fn new_texture(
+    device: &wgpu::Device,
+    (width, height): (u32, u32),
+    levels: u32,
+    format: wgpu::TextureFormat,
+    label: &str,
+) -> wgpu::Texture {
+    device.create_texture(&wgpu::TextureDescriptor {
         label: Some(label),
         size: wgpu::Extent3d {
-            width: image.width,
-            height: image.height,
+            width,
+            height,
             depth_or_array_layers: 1,
         },
         mip_level_count: levels,
@@ -28,16 +187,61 @@ pub fn upload(
         format,
         usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
         view_formats: &[],
-    });
-    let (mut w, mut h) = (image.width, image.height);
-    let mut level = image.rgba8.clone();
-    for mip in 0..levels {
-        write_level(queue, &texture, mip, &level, w, h);
-        if mip + 1 < levels {
-            level = downsample(&level, w, h, image.srgb);
-            w = (w / 2).max(1);
-            h = (h / 2).max(1);
-        }
+    })
+}
+
+/// RGBA8 levels (level 0 of `size` first) as one texture.
+fn upload_levels(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    levels: &[Vec<u8>],
+    size: (u32, u32),
+    format: wgpu::TextureFormat,
+    label: &str,
+) -> wgpu::TextureView {
+    let texture = new_texture(device, size, levels.len() as u32, format, label);
+    for (mip, data) in levels.iter().enumerate() {
+        let (w, h) = level_size(size.0, size.1, mip);
+        write_level(queue, &texture, mip as u32, data, w, h);
+        count(data.len() as u64);
+    }
+    texture.create_view(&wgpu::TextureViewDescriptor::default())
+}
+
+/// A block encoding as it is stored, every level.
+fn upload_blocks(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    image: &BlockImage,
+    label: &str,
+) -> wgpu::TextureView {
+    let format = block_format(image.format, image.srgb);
+    let size = (image.width, image.height);
+    let texture = new_texture(device, size, image.levels.len() as u32, format, label);
+    for (mip, data) in image.levels.iter().enumerate() {
+        let (w, h) = level_size(size.0, size.1, mip);
+        let (bw, bh) = (w.div_ceil(4), h.div_ceil(4));
+        queue.write_texture(
+            wgpu::TexelCopyTextureInfo {
+                texture: &texture,
+                mip_level: mip as u32,
+                origin: wgpu::Origin3d::ZERO,
+                aspect: wgpu::TextureAspect::All,
+            },
+            data,
+            wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(bw * image.format.block_bytes() as u32),
+                rows_per_image: Some(bh),
+            },
+            // Whole blocks: a level smaller than a block is copied as its physical size.
+            wgpu::Extent3d {
+                width: bw * 4,
+                height: bh * 4,
+                depth_or_array_layers: 1,
+            },
+        );
+        count(data.len() as u64);
     }
     texture.create_view(&wgpu::TextureViewDescriptor::default())
 }
@@ -66,6 +270,7 @@ pub fn upload_single(
         view_formats: &[],
     });
     write_level(queue, &texture, 0, rgba, width, height);
+    count(rgba.len() as u64);
     texture.create_view(&wgpu::TextureViewDescriptor::default())
 }
 
@@ -106,136 +311,14 @@ pub fn solid(
     rgba: [u8; 4],
     srgb: bool,
 ) -> wgpu::TextureView {
-    let image = TextureImage {
-        width: 1,
-        height: 1,
-        rgba8: rgba.to_vec(),
-        srgb,
-    };
-    upload(device, queue, &image, "solid")
-}
-
-pub fn mip_count(width: u32, height: u32) -> u32 {
-    32 - width.max(height).max(1).leading_zeros()
-}
-
-/// 2×2 box filter (edge texels repeat for odd sizes), in linear light when `srgb`.
-fn downsample(src: &[u8], w: u32, h: u32, srgb: bool) -> Vec<u8> {
-    let (nw, nh) = ((w / 2).max(1), (h / 2).max(1));
-    let mut out = vec![0u8; (nw * nh * 4) as usize];
-    let t = tables();
-    let at = |x: u32, y: u32| ((y.min(h - 1) * w + x.min(w - 1)) * 4) as usize;
-    for y in 0..nh {
-        for x in 0..nw {
-            let (x2, y2) = (x * 2, y * 2);
-            let quad = [
-                at(x2, y2),
-                at(x2 + 1, y2),
-                at(x2, y2 + 1),
-                at(x2 + 1, y2 + 1),
-            ];
-            let texel = ((y * nw + x) * 4) as usize;
-            for c in 0..4 {
-                let linear = srgb && c < 3;
-                let decode = &t.decode[usize::from(linear)];
-                let sum: f32 = quad.iter().map(|&i| decode[src[i + c] as usize]).sum();
-                let avg = sum * 0.25;
-                out[texel + c] = if linear {
-                    t.encode(avg)
-                } else {
-                    (avg * 255.0 + 0.5).clamp(0.0, 255.0) as u8
-                };
-            }
-        }
-    }
-    out
-}
-
-/// Each byte's value (plain and sRGB-decoded), and the linear values where the sRGB-encoded
-/// byte steps up: what a mip level costs is table lookups, not `powf` per texel.
-struct Tables {
-    decode: [[f32; 256]; 2],
-    /// `steps[k]`: the least linear value encoded to byte `k + 1` (the sRGB curve's midpoint
-    /// between `k` and `k + 1`, decoded).
-    steps: [f32; 255],
-}
-
-impl Tables {
-    /// The sRGB byte of a linear value in [0, 1]: the steps at or below it.
-    fn encode(&self, linear: f32) -> u8 {
-        self.steps.partition_point(|&s| s <= linear) as u8
-    }
-}
-
-fn tables() -> &'static Tables {
-    static TABLES: std::sync::OnceLock<Tables> = std::sync::OnceLock::new();
-    TABLES.get_or_init(|| {
-        let unit = |b: usize| b as f32 / 255.0;
-        Tables {
-            decode: [
-                std::array::from_fn(unit),
-                std::array::from_fn(|b| srgb_to_linear(unit(b))),
-            ],
-            steps: std::array::from_fn(|k| srgb_to_linear((k as f32 + 0.5) / 255.0)),
-        }
-    })
-}
-
-fn srgb_to_linear(v: f32) -> f32 {
-    if v <= 0.04045 {
-        v / 12.92
-    } else {
-        ((v + 0.055) / 1.055).powf(2.4)
-    }
-}
-
-/// The sRGB curve itself (what [`Tables::encode`] is checked against).
-#[cfg(test)]
-fn linear_to_srgb(v: f32) -> f32 {
-    if v <= 0.0031308 {
-        v * 12.92
-    } else {
-        1.055 * v.powf(1.0 / 2.4) - 0.055
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn mip_chain_length() {
-        assert_eq!(mip_count(1, 1), 1);
-        assert_eq!(mip_count(512, 512), 10);
-        assert_eq!(mip_count(640, 3), 10);
-    }
-
-    #[test]
-    fn the_encode_table_rounds_as_the_srgb_curve_does() {
-        let t = tables();
-        let mut off = 0;
-        let n = 200_000;
-        for i in 0..=n {
-            let v = i as f32 / n as f32;
-            let exact = (linear_to_srgb(v) * 255.0 + 0.5).clamp(0.0, 255.0) as u8;
-            let got = t.encode(v);
-            assert!(exact.abs_diff(got) <= 1, "{v}: {exact} vs {got}");
-            off += usize::from(exact != got);
-        }
-        // Only where float rounding lands exactly on a step.
-        assert!(off <= 2, "{off} of {n} values off by one");
-        assert_eq!((t.encode(0.0), t.encode(1.0)), (0, 255));
-    }
-
-    #[test]
-    fn srgb_downsample_averages_in_linear_light() {
-        // Black and white average to 50 % linear, which is sRGB 188, not 128.
-        let src = [0, 0, 0, 255, 255, 255, 255, 255];
-        let out = downsample(&src, 2, 1, true);
-        assert!((out[0] as i32 - 188).abs() <= 1, "{}", out[0]);
-        let lin = downsample(&src, 2, 1, false);
-        assert!((lin[0] as i32 - 128).abs() <= 1);
-    }
+    upload_levels(
+        device,
+        queue,
+        &[rgba.to_vec()],
+        (1, 1),
+        rgba8_format(srgb),
+        "solid",
+    )
 }
 
 /// IEEE binary16 bits of `x` (round to nearest even; overflow to ∞, underflow through the
@@ -276,6 +359,7 @@ pub fn f32_to_f16(x: f32) -> u16 {
 
 /// An `Rgba16Float` texture of `width × height` texels (a LUT), written by [`write_rgba16f`].
 pub fn rgba16f(device: &wgpu::Device, (width, height): (u32, u32), label: &str) -> wgpu::Texture {
+    count(u64::from(width) * u64::from(height) * 8);
     device.create_texture(&wgpu::TextureDescriptor {
         label: Some(label),
         size: wgpu::Extent3d {

@@ -172,7 +172,7 @@ impl UiRenderer {
                 })],
             }),
             multiview_mask: None,
-            cache: None,
+            cache: super::pipeline_cache::for_device(device).as_ref(),
         });
         let mut r = Self {
             pipeline,

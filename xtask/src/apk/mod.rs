@@ -16,6 +16,7 @@
 //! - `cargo xtask apk --check-imports <lib.so>`: every undefined symbol of the library must be
 //!   in the table at an API level ≤ the manifest's minSdk.
 
+mod glb_images;
 mod package;
 pub(crate) mod symbols;
 pub(crate) mod sysroot;

@@ -28,7 +28,10 @@ pub struct Package<'a> {
 }
 
 /// Copies the repository's `assets/` into `dest` (every file but dot-files and `*.md`
-/// documentation); returns the number of files.
+/// documentation) as the phone reads them: textures as their ETC2 encodings only (every
+/// Android GPU samples ETC2; no BC, no PNG/JPEG source beside an encoding), each `.glb`'s
+/// embedded images replaced by a reference to their encoding ([`super::glb_images`]); the
+/// scanned head with its licence. Returns the number of files.
 pub fn stage_assets(src: &Path, dest: &Path) -> Result<usize, String> {
     let mut n = 0;
     if !src.is_dir() {
@@ -44,24 +47,65 @@ pub fn stage_assets(src: &Path, dest: &Path) -> Result<usize, String> {
             // `.lut`, `.tables`: the spatial models' tables are compiled into the library
             // (`include_bytes!`), a copy among the assets would be dead weight.
             let baked = name.ends_with(".lut") || name.ends_with(".tables");
-            if name.starts_with('.') || name.ends_with(".md") || baked {
-                continue;
-            }
-            // The scanned head (`assets/head/`, 0.7 MB of JPEG + glb) is desktop-only: the APK
-            // has no JPEG decoder and its budget is 6 MB.
-            if p.is_dir() && p.parent() == Some(src) && name == "head" {
+            // Block encodings the phone does not read (BC: desktop GPUs).
+            let desktop = name.ends_with(".ktx2") && !name.ends_with(".etc2.ktx2");
+            if name.starts_with('.') || name.ends_with(".md") || baked || desktop {
                 continue;
             }
             if p.is_dir() {
                 stack.push(p);
-            } else if p.is_file() {
-                let rel = p.strip_prefix(src).map_err(|e| e.to_string())?;
-                tools::copy(&p, &dest.join(rel))?;
-                n += 1;
+                continue;
             }
+            if !p.is_file() {
+                continue;
+            }
+            let rel = p.strip_prefix(src).map_err(|e| e.to_string())?;
+            // A standalone image (the head's maps) that has its ETC2 encodings: the source
+            // stays on the desktop.
+            let encodings = p.with_file_name(format!("{name}.textures"));
+            if has_etc2(&encodings) {
+                continue;
+            }
+            if name.ends_with(".glb") {
+                let glb = std::fs::read(&p).map_err(|e| format!("{}: {e}", p.display()))?;
+                let etc2 = |image: usize| etc2_encoding(&encodings, name, image);
+                let (out, _) = super::glb_images::point_images_at(&glb, &etc2)
+                    .map_err(|e| format!("{}: {e}", p.display()))?;
+                let to = dest.join(rel);
+                tools::mkdir(to.parent().unwrap_or(dest))?;
+                std::fs::write(&to, out).map_err(|e| format!("{}: {e}", to.display()))?;
+            } else {
+                tools::copy(&p, &dest.join(rel))?;
+            }
+            n += 1;
         }
     }
     Ok(n)
+}
+
+fn etc2_files(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .map(|rd| {
+            rd.flatten()
+                .filter_map(|e| e.file_name().to_str().map(str::to_owned))
+                .filter(|n| n.ends_with(".etc2.ktx2"))
+                .collect()
+        })
+        .unwrap_or_default();
+    names.sort();
+    names
+}
+
+fn has_etc2(dir: &Path) -> bool {
+    !etc2_files(dir).is_empty()
+}
+
+/// The URI (relative to the `.glb`) of image `image`'s ETC2 encoding, if it has one.
+fn etc2_encoding(dir: &Path, glb: &str, image: usize) -> Option<String> {
+    etc2_files(dir)
+        .into_iter()
+        .find(|n| n.starts_with(&format!("{image}-")))
+        .map(|n| format!("{glb}.textures/{n}"))
 }
 
 struct SigningKey {

@@ -3,6 +3,8 @@
 //! * `assets/character.glb`: skinned humanoid with `_THICKNESS`, base-colour atlas (alpha: the
 //!   skin mask) and the `idle`, `run`, `jump` clips.
 //! * `assets/props/*.glb`: static props for the runner game.
+//! * `<model>.textures/*.ktx2` (and the scanned head's `head/<map>.textures/`): the textures'
+//!   GPU block encodings (`crate::textures`).
 
 mod clips;
 mod detmath;
@@ -118,6 +120,17 @@ pub fn run(args: &[String]) -> Result<(), String> {
         let len = std::fs::metadata(&p).map(|m| m.len()).unwrap_or(0);
         println!("wrote {} ({len} bytes): {summary}", p.display());
     }
+    // Their textures' GPU block encodings (and the scanned head's), beside each source.
+    let t0 = std::time::Instant::now();
+    let written = crate::textures::write_all(&out_dir, &repo_root().join("assets"))?;
+    for (rel, len) in &written {
+        println!("wrote {} ({len} bytes)", out_dir.join(rel).display());
+    }
+    println!(
+        "{} texture encodings in {:.1} s",
+        written.len(),
+        t0.elapsed().as_secs_f64()
+    );
     Ok(())
 }
 
