@@ -14,7 +14,9 @@ APK=$TARGET_DIR/apk/dermis-release.apk
 PACKAGE=org.dermis.app
 MIN_SDK=26
 TARGET_SDK=35
-BUDGET_BYTES=6000000 # 6 MB (issue 11: was 8 MB while the APK was 7.5 MB)
+# 7 MB: issue 11's 6 MB plus what the scanned head costs in the APK (issue 27: its mesh and
+# its two maps' ETC2 encodings, 1.03 MB deflated; the APK was 6.51 MB with it).
+BUDGET_BYTES=7000000
 ALLOWED_NEEDED="libc.so libm.so libdl.so liblog.so libandroid.so"
 
 FAILURES=0
@@ -231,14 +233,33 @@ check_apk() {
         echo "    $(basename "$so"): $(stat -c %s "$so") bytes"
     done
 
-    # --- size
-    local size
-    size=$(stat -c %s "$APK")
-    echo "APK size: $size bytes ($(awk -v s="$size" 'BEGIN { printf "%.2f", s / 1e6 }') MB), budget 6 MB"
-    if [ "$size" -le "$BUDGET_BYTES" ]; then
-        pass "APK within the 6 MB budget"
+    # --- the scanned head (the showroom's subject) and its licence; textures as ETC2 only
+    local entry
+    for entry in assets/head/LeePerrySmith.glb assets/head/LeePerrySmith_License.txt \
+        assets/head/Map-COL.jpg.textures/base-color.etc2.ktx2 \
+        assets/head/Infinite-Level_02_Tangent_SmoothUV.jpg.textures/normal.etc2.ktx2 \
+        assets/character.glb.textures/0-base-color-mask.etc2.ktx2; do
+        if awk -v e="$entry" '$NF == e { ok = 1 } END { exit !ok }' <<<"$out"; then
+            pass "carries $entry"
+        else
+            fail "carries $entry"
+        fi
+    done
+    if awk '$NF ~ /\.bc\.ktx2$|^assets\/head\/.*\.jpg$/ { bad = 1 } END { exit bad }' <<<"$out"; then
+        pass "no desktop-only textures (BC encodings, the head's JPEGs)"
     else
-        fail "APK over the 6 MB budget"
+        fail "no desktop-only textures (BC encodings, the head's JPEGs)"
+    fi
+
+    # --- size
+    local size budget_mb
+    size=$(stat -c %s "$APK")
+    budget_mb=$(awk -v s="$BUDGET_BYTES" 'BEGIN { printf "%.0f", s / 1e6 }')
+    echo "APK size: $size bytes ($(awk -v s="$size" 'BEGIN { printf "%.2f", s / 1e6 }') MB), budget $budget_mb MB"
+    if [ "$size" -le "$BUDGET_BYTES" ]; then
+        pass "APK within the $budget_mb MB budget"
+    else
+        fail "APK over the $budget_mb MB budget"
     fi
     return 0
 }

@@ -17,12 +17,9 @@ use super::score::{Reference, BLOCK};
 use dermis_core::face::head::FaceLight;
 use dermis_core::face::pfm::FloatImage;
 
-/// FNV-1a, 64 bits: the file hash `render.py` records (the same in Python, no dependency).
-pub fn fnv1a64(bytes: &[u8]) -> u64 {
-    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
-        (h ^ b as u64).wrapping_mul(0x0000_0100_0000_01b3)
-    })
-}
+/// FNV-1a, 64 bits: the file hash `render.py` records (the same in Python, no dependency);
+/// the engine's (the texture encodings' source hash).
+pub use dermis_core::asset::compressed::fnv1a64;
 
 /// One light's record in `cache.json`.
 #[derive(Clone, Debug, Deserialize)]

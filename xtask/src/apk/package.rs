@@ -63,10 +63,11 @@ pub fn stage_assets(src: &Path, dest: &Path) -> Result<usize, String> {
             // A standalone image (the head's maps) that has its ETC2 encodings: the source
             // stays on the desktop.
             let encodings = p.with_file_name(format!("{name}.textures"));
-            if has_etc2(&encodings) {
+            let glb = name.ends_with(".glb");
+            if !glb && has_etc2(&encodings) {
                 continue;
             }
-            if name.ends_with(".glb") {
+            if glb {
                 let glb = std::fs::read(&p).map_err(|e| format!("{}: {e}", p.display()))?;
                 let etc2 = |image: usize| etc2_encoding(&encodings, name, image);
                 let (out, _) = super::glb_images::point_images_at(&glb, &etc2)
