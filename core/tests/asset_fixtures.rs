@@ -105,9 +105,17 @@ fn slice_loader_uses_resolver() {
     let m = load_gltf_slice(&bytes, "model.gltf", &resolve).unwrap();
     check_rich(&m);
     assert_eq!(m.source, "model.gltf");
+    // The buffer, the image, then the image's block encodings beside the model, one per
+    // family (none here: the PNG is decoded).
     assert_eq!(
         *asked.borrow(),
-        vec!["model data.bin".to_owned(), "textures/skin.png".to_owned()]
+        [
+            "model data.bin",
+            "textures/skin.png",
+            "model.gltf.textures/0-base-color.bc.ktx2",
+            "model.gltf.textures/0-base-color.etc2.ktx2",
+            "model.gltf.textures/0-base-color.astc.ktx2",
+        ]
     );
     let failing = |_: &str| -> Result<Vec<u8>, String> { Err("asset missing".into()) };
     let e = load_gltf_slice(&bytes, "model.gltf", &failing).unwrap_err();

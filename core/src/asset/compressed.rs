@@ -33,7 +33,10 @@ pub fn encoded_texture(
         encodings.push(std::sync::Arc::new(img));
         (Some(size), None)
     } else {
-        let size = super::images::image_dimensions(source, what)?;
+        // A source that cannot be read is decode_image's to report.
+        let Ok(size) = super::images::image_dimensions(source, what) else {
+            return super::images::decode_image(source, role.srgb(), what);
+        };
         (Some(size), Some(fnv1a64(source)))
     };
     for family in Family::ALL {

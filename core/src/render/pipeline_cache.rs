@@ -75,16 +75,31 @@ pub fn wrap(data: &[u8], key: &str) -> Vec<u8> {
     out
 }
 
-/// Every live cache with its device (a few entries: one per `Gpu` with a cache).
-static CACHES: Mutex<Vec<(wgpu::Device, wgpu::PipelineCache)>> = Mutex::new(Vec::new());
+/// Every live cache by its device's key (a few entries: one per `Gpu` with a cache).
+static CACHES: Mutex<Vec<(usize, wgpu::PipelineCache)>> = Mutex::new(Vec::new());
+
+/// A key unique to `device` among the process's live devices: the address of its Vulkan
+/// device object (the only backend with a pipeline cache). wgpu's own `==` on devices compares
+/// ids, which repeat across instances (every `Gpu` has its own), so two `Gpu`s would share a
+/// cache and wgpu would panic on the foreign one.
+fn device_key(device: &wgpu::Device) -> Option<usize> {
+    // SAFETY: only the address of wgpu-hal's device object is taken, nothing is called on it,
+    // and the guard is dropped at once.
+    let hal = unsafe { device.as_hal::<wgpu::hal::api::Vulkan>() }?;
+    Some(&*hal as *const wgpu::hal::vulkan::Device as usize)
+}
 
 /// The pipeline cache of `device`, where its `Gpu` has one: every pipeline the renderer
 /// builds passes it.
 pub fn for_device(device: &wgpu::Device) -> Option<wgpu::PipelineCache> {
     let caches = CACHES.lock().unwrap_or_else(|e| e.into_inner());
+    if caches.is_empty() {
+        return None;
+    }
+    let key = device_key(device)?;
     caches
         .iter()
-        .find(|(d, _)| d == device)
+        .find(|(k, _)| *k == key)
         .map(|(_, c)| c.clone())
 }
 
@@ -92,7 +107,9 @@ pub fn for_device(device: &wgpu::Device) -> Option<wgpu::PipelineCache> {
 pub struct PipelineCacheFile {
     pub path: PathBuf,
     key: String,
-    device: wgpu::Device,
+    /// Its device's [`device_key`] (the device is kept alive with it).
+    device_key: usize,
+    _device: wgpu::Device,
     cache: wgpu::PipelineCache,
     /// Whether the cache started from the file's data.
     pub loaded: bool,
@@ -108,6 +125,7 @@ impl PipelineCacheFile {
             return None;
         }
         let key = cache_key(info)?;
+        let device_key = device_key(device)?;
         let path = dir.join(FILE);
         let bytes = match std::fs::read(&path) {
             Ok(bytes) => Some(bytes),
@@ -144,11 +162,12 @@ impl PipelineCacheFile {
         CACHES
             .lock()
             .unwrap_or_else(|e| e.into_inner())
-            .push((device.clone(), cache.clone()));
+            .push((device_key, cache.clone()));
         Some(Self {
             path,
             key,
-            device: device.clone(),
+            device_key,
+            _device: device.clone(),
             cache,
             loaded,
         })
@@ -179,7 +198,7 @@ impl Drop for PipelineCacheFile {
             log::warn!("pipeline cache not saved at exit: {e}");
         }
         let mut caches = CACHES.lock().unwrap_or_else(|e| e.into_inner());
-        caches.retain(|(d, c)| !(d == &self.device && c == &self.cache));
+        caches.retain(|(k, c)| !(*k == self.device_key && c == &self.cache));
     }
 }
 
