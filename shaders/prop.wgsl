@@ -44,16 +44,16 @@ fn vs_main(v: VertexIn) -> VertexOut {
 fn prop_radiance(in: VertexOut) -> vec3<f32> {
     let albedo = textureSample(base_color, base_sampler, in.uv).rgb * material.factor.rgb;
     let n = safe_normalize(in.normal, vec3<f32>(0.0, 1.0, 0.0));
-    let to_light = frame.light_pos.xyz - in.world_pos;
+    let to_light = frame.light_pos - in.world_pos;
     let d = max(length(to_light), 1e-3);
     let l = to_light / d;
-    let v = safe_normalize(frame.camera_pos.xyz - in.world_pos, n);
+    let v = safe_normalize(frame.camera_pos - in.world_pos, n);
     // The character's shadow falls on the floor and the props (the key light's shadow map).
-    let e = frame.light_pos.w * frame.light_color.rgb / (d * d) * max(dot(n, l), 0.0)
+    let e = frame.light_intensity * frame.light_color / (d * d) * max(dot(n, l), 0.0)
         * light_visible(in.world_pos, n);
     let h = safe_normalize(l + v, n);
     let spec = 0.04 * pow(max(dot(n, h), 0.0), 32.0) * 5.0;
-    return frame.ambient.rgb * albedo + e * (albedo * INV_PI + vec3<f32>(spec));
+    return frame.ambient * albedo + e * (albedo * INV_PI + vec3<f32>(spec));
 }
 
 #ifdef SCREEN_SPACE

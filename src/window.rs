@@ -236,7 +236,7 @@ impl App {
                 "n" => {
                     demo.next_material();
                     if let (Some(r), Some(g)) = (renderer, &self.graphics) {
-                        r.set_material(&g.gpu.queue, &demo.material);
+                        r.set_material(&g.gpu, &demo.material);
                     }
                 }
                 "c" => {
@@ -286,7 +286,7 @@ impl App {
                 demo,
                 renderer: Some(r),
             } => {
-                let mut frame = DemoFrame::new(demo, r, &g.gpu);
+                let mut frame = DemoFrame::new(demo, r);
                 frame.after_encode = Some(&mut record);
                 g.driver.frame(&g.gpu, output, &mut frame)
             }

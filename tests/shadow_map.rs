@@ -9,7 +9,8 @@ mod common;
 use common::Rig;
 use dermis_core::camera::look_at;
 use dermis_core::governor::GovernorConfig;
-use dermis_core::render::{key_light, FrameView, Gpu, RgbaImage, EXPOSURE, SHADOW_MAP_SIZE};
+use dermis_core::render::{Gpu, RgbaImage, SHADOW_MAP_SIZE};
+use dermis_core::scene::{key_light, FrameView, EXPOSURE};
 use dermis_core::shading::ShadingModel;
 use dermis_measure::ground_truth::{self as reference, metric, ReferenceSet, Scene};
 use dermis_measure::scenes::SceneRenderer;
@@ -44,15 +45,12 @@ impl Rig {
             .renderer
             .set_shadow_scene(&self.gpu, casts, &[], None, size);
         let (view_proj, camera_pos) = self.shadow_camera();
-        self.gg.renderer.prepare(
-            &self.gpu.queue,
-            &FrameView {
-                view_proj,
-                camera_pos,
-                light: key_light(self.feet_on_ground()),
-                exposure: EXPOSURE,
-            },
-        );
+        self.camera = Some(FrameView {
+            view_proj,
+            camera_pos,
+            light: key_light(self.feet_on_ground()),
+            exposure: EXPOSURE,
+        });
         self.shoot_frame(character)
     }
 

@@ -12,7 +12,8 @@ use glam::{Mat4, Vec2, Vec3};
 use crate::anim::Pose;
 use crate::asset::tangents::generate_tangents;
 use crate::asset::{load_gltf, Aabb, AssetError, Model, Node, Skin, TextureImage, Transform};
-use crate::render::{DrawSet, FrameView, Gpu, Light, Offscreen, Renderer, RgbaImage};
+use crate::render::{Gpu, Offscreen, Renderer, RgbaImage};
+use crate::scene::{DrawSet, FramePacket, FrameView, Light, SubjectPose, EXPOSURE};
 use crate::shading::{Material, ShadingModel};
 
 /// The head's folder under the assets root.
@@ -242,12 +243,36 @@ impl HeadRenderer {
         };
         let mut renderer = Renderer::new(gpu, format);
         if hdr {
-            renderer.clear = wgpu::Color::BLACK;
+            renderer.set_clear(wgpu::Color::BLACK);
         }
         renderer.load_character(gpu, model, material)?;
+        renderer.resize(gpu, (width, height));
+        // Posed once, in its rest pose: a frame that poses it and draws nothing.
         let mut pose = Pose::new(model);
         pose.update_world(model);
-        renderer.update_character(&gpu.queue, model, &pose, Mat4::IDENTITY);
+        let view = FrameView {
+            view_proj: Mat4::IDENTITY,
+            camera_pos: Vec3::ZERO,
+            light: Light::default(),
+            exposure: EXPOSURE,
+        };
+        let nothing = DrawSet {
+            shading: None,
+            character: false,
+            props: false,
+            ui: false,
+        };
+        renderer.prepare(
+            gpu,
+            &FramePacket {
+                subject: Some(SubjectPose {
+                    model,
+                    pose: &pose,
+                    world: Mat4::IDENTITY,
+                }),
+                ..FramePacket::new((width, height), view, nothing)
+            },
+        );
         Ok(Self {
             renderer,
             target: Offscreen::with_format(gpu, width, height, format),
@@ -257,7 +282,7 @@ impl HeadRenderer {
 
     /// Switches the material (the model keeps its geometry).
     pub fn set_material(&self, gpu: &Gpu, material: &Material) {
-        self.renderer.set_material(&gpu.queue, material);
+        self.renderer.set_material(gpu, material);
     }
 
     fn draw(&mut self, gpu: &Gpu, shading: Option<ShadingModel>, camera: &Camera, light: Light) {
@@ -272,15 +297,18 @@ impl HeadRenderer {
             ),
             camera_pos: camera.eye,
             light,
-            exposure: crate::render::EXPOSURE,
+            exposure: EXPOSURE,
         };
-        self.renderer.prepare(&gpu.queue, &view);
         let draw = DrawSet {
             shading,
             character: true,
             props: false,
+            ui: false,
         };
-        self.renderer.draw_offscreen(gpu, &self.target, draw);
+        let frame = self
+            .renderer
+            .prepare(gpu, &FramePacket::new((w, h), view, draw));
+        self.renderer.draw_offscreen(gpu, &self.target, &frame);
     }
 
     /// Linear radiance [W m⁻² sr⁻¹] per pixel (rows top to bottom) under a white point light

@@ -1,14 +1,17 @@
-//! Render pipelines: one per character shading model (composed from `character.wgsl` with
-//! `shading_model` bound to the model's file) and one for props. All built at load — or, for
-//! a quick first frame, the first model's at load and the others' on a background thread
-//! started after the first frame ([`Pipelines::new`] with `first`), installed as they arrive.
+//! The character pipelines: one per shading model the scene can reach (composed from
+//! `character.wgsl` with `shading_model` bound to the model's file), for meshes without a
+//! normal map and with one. All built at load — or, for a quick first frame, the first model's
+//! at load and the others' on a background thread started after the first frame
+//! ([`CharacterPipelines::new`] with `first`), installed into the models' records as they
+//! arrive. Also the one way every render pipeline of the renderer is described
+//! ([`pipeline`], [`targets`]).
 
 use std::sync::mpsc;
 
 use super::layouts::Layouts;
-use super::mesh::{instance_layout, vertex_layout};
+use super::mesh::vertex_layout;
 use super::model_gpu::{ModelTable, PipelineKey};
-use super::sss_pass::SPLIT_FORMAT;
+use super::passes::subsurface::SPLIT_FORMAT;
 use super::targets::{depth_state, multisample, MSAA_SAMPLES};
 use crate::shader::{compose, ShaderDefs};
 use crate::shading::ShadingModel;
@@ -64,14 +67,13 @@ impl PipelineSet {
 }
 
 /// The character pipelines: those built at load wait in `ready` until the renderer installs
-/// them into its [`ModelTable`]; the rest of the set is built on a background thread and
-/// installed as it arrives. The unlit baseline's, if requested, lives here.
+/// them into its [`ModelTable`] (the unlit baseline's among them, where the set asks for it);
+/// the rest of the set is built on a background thread and installed as it arrives.
 pub struct CharacterPipelines {
-    /// Built, not yet installed.
-    ready: Vec<(PipelineKey, wgpu::RenderPipeline)>,
+    /// Built, not yet installed (`None`: the unlit baseline).
+    ready: Vec<(Option<PipelineKey>, wgpu::RenderPipeline)>,
     layout: wgpu::PipelineLayout,
     format: wgpu::TextureFormat,
-    pub unlit: Option<wgpu::RenderPipeline>,
     /// The requested pipelines not yet received from the background builder.
     pending: Vec<PipelineKey>,
     /// What the builder needs, until [`Self::start_builder`] spawns it.
@@ -86,7 +88,10 @@ impl CharacterPipelines {
     /// their models draw nothing).
     pub fn receive(&mut self, table: &mut ModelTable, need: Option<PipelineKey>, all: bool) {
         for (key, pipeline) in self.ready.drain(..) {
-            table.install(key, pipeline);
+            match key {
+                Some(key) => table.install(key, pipeline),
+                None => table.install_unlit(pipeline),
+            }
         }
         let blocking = |pending: &[PipelineKey]| all || need.is_some_and(|k| pending.contains(&k));
         if blocking(&self.pending) {
@@ -152,7 +157,7 @@ impl CharacterPipelines {
     pub fn add_normal_mapped(&mut self, table: &mut ModelTable, device: &wgpu::Device) {
         for model in table.models() {
             let key = (model, true);
-            let built = table.pipeline(key).is_some() || self.ready.iter().any(|(k, _)| *k == key);
+            let built = table.draws(Some(key)) || self.ready.iter().any(|(k, _)| *k == Some(key));
             if built || self.pending.contains(&key) {
                 continue;
             }
@@ -165,17 +170,9 @@ impl CharacterPipelines {
     }
 }
 
-pub struct Pipelines {
-    pub character: CharacterPipelines,
-    pub prop: wgpu::RenderPipeline,
-    /// Props in a frame with the subsurface pass (two linear targets); only when the set
-    /// needs that pass.
-    pub prop_split: Option<wgpu::RenderPipeline>,
-}
-
 /// The colour targets of a pipeline: the output format, or the two linear targets of a
 /// frame with the subsurface pass.
-fn targets(format: wgpu::TextureFormat, split: bool) -> Vec<Option<wgpu::ColorTargetState>> {
+pub fn targets(format: wgpu::TextureFormat, split: bool) -> Vec<Option<wgpu::ColorTargetState>> {
     let target = |format| {
         Some(wgpu::ColorTargetState {
             format,
@@ -190,10 +187,9 @@ fn targets(format: wgpu::TextureFormat, split: bool) -> Vec<Option<wgpu::ColorTa
     }
 }
 
-impl Pipelines {
+impl CharacterPipelines {
     /// The pipelines of `set`: every one now, or with `first` (a model of the set) only that
-    /// model's character pipeline now and the others' on a background thread
-    /// ([`CharacterPipelines::receive`] installs them).
+    /// model's now and the others' on a background thread ([`Self::receive`] installs them).
     pub fn new(
         device: &wgpu::Device,
         layouts: &Layouts,
@@ -201,7 +197,7 @@ impl Pipelines {
         set: &PipelineSet,
         first: Option<ShadingModel>,
     ) -> Self {
-        let character_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("character"),
             bind_group_layouts: &[
                 Some(&layouts.frame),
@@ -210,71 +206,42 @@ impl Pipelines {
             ],
             immediate_size: 0,
         });
-        let prop_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("prop"),
-            bind_group_layouts: &[Some(&layouts.frame), Some(&layouts.prop_material)],
-            immediate_size: 0,
-        });
-        let character = |label: &str, source: String, split: bool| {
-            character_pipeline(device, &character_layout, format, label, source, split)
-        };
         let now: Vec<ShadingModel> = match first.filter(|m| set.models.contains(m)) {
             Some(m) => vec![m],
             None => set.models.clone(),
         };
-        let built = now
+        let mut ready: Vec<(Option<PipelineKey>, wgpu::RenderPipeline)> = now
             .iter()
             .map(|&m| {
                 let key = (m, false);
-                (key, model_pipeline(device, &character_layout, format, key))
+                (Some(key), model_pipeline(device, &layout, format, key))
             })
             .collect();
+        if set.unlit {
+            let src = compose(
+                "character",
+                &ShaderDefs::new().alias("shading_model", "unlit"),
+            )
+            .expect("built-in shaders compose");
+            ready.push((
+                None,
+                character_pipeline(device, &layout, format, "unlit", src, false),
+            ));
+        }
         let pending: Vec<PipelineKey> = set
             .models
             .iter()
             .filter(|m| !now.contains(m))
             .map(|&m| (m, false))
             .collect();
-        // Deferred (`first`): the builder starts later, with what is pending then.
-        let builder = first.is_some().then(|| device.clone());
-        let unlit = set.unlit.then(|| {
-            let src = compose(
-                "character",
-                &ShaderDefs::new().alias("shading_model", "unlit"),
-            )
-            .expect("built-in shaders compose");
-            character("unlit", src, false)
-        });
-        let prop = |defs: &ShaderDefs, split: bool| {
-            let src = compose("prop", defs).expect("built-in shaders compose");
-            let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                label: Some("prop"),
-                source: wgpu::ShaderSource::Wgsl(src.into()),
-            });
-            pipeline(
-                device,
-                &prop_layout,
-                &module,
-                &targets(format, split),
-                &[vertex_layout(), instance_layout()],
-                "prop",
-            )
-        };
-        let prop_split = set
-            .needs_subsurface_pass()
-            .then(|| prop(&ShaderDefs::new().flag("SCREEN_SPACE"), true));
         Self {
-            character: CharacterPipelines {
-                ready: built,
-                unlit,
-                layout: character_layout,
-                format,
-                pending,
-                builder,
-                arrivals: None,
-            },
-            prop: prop(&ShaderDefs::new(), false),
-            prop_split,
+            ready,
+            layout,
+            format,
+            pending,
+            // Deferred (`first`): the builder starts later, with what is pending then.
+            builder: first.is_some().then(|| device.clone()),
+            arrivals: None,
         }
     }
 }
@@ -314,7 +281,9 @@ fn character_pipeline(
     )
 }
 
-fn pipeline(
+/// A render pipeline of the renderer: triangles, back faces culled, depth tested and
+/// written, 4× MSAA, `vs_main`/`fs_main` of `module`.
+pub fn pipeline(
     device: &wgpu::Device,
     layout: &wgpu::PipelineLayout,
     module: &wgpu::ShaderModule,

@@ -74,18 +74,25 @@ impl Kernel {
         std::array::from_fn(|c| self.centre[c] + self.rings.iter().map(|r| r.0[c]).sum::<f64>())
     }
 
-    /// The uniform of `sss_pass.wgsl`: counts, the background colour, the centre, then
-    /// (mass, radius) per ring.
+    /// The uniform of `sss_pass.wgsl`: the counts, the background colour, the centre, then
+    /// (mass, outer radius) per ring.
     pub fn pack(&self, angles: u32, background: [f32; 4]) -> KernelUniform {
-        let f = |m: [f64; 3], w: f64| [m[0] as f32, m[1] as f32, m[2] as f32, w as f32];
-        let mut rings = [[0.0; 4]; MAX_RINGS];
+        let mass = |m: [f64; 3]| m.map(|x| x as f32);
+        let mut rings = [Ring::default(); MAX_RINGS];
         for (slot, (m, r)) in rings.iter_mut().zip(&self.rings) {
-            *slot = f(*m, *r);
+            *slot = Ring {
+                mass: mass(*m),
+                outer_mm: *r as f32,
+            };
         }
         KernelUniform {
-            counts: [self.rings.len() as f32, angles as f32, DEPTH_TOLERANCE, 0.0],
+            ring_count: self.rings.len().min(MAX_RINGS) as u32,
+            angles,
+            depth_tolerance: DEPTH_TOLERANCE,
+            _pad0: 0.0,
             background,
-            centre: f(self.centre, self.centre_radius),
+            centre_mass: mass(self.centre),
+            centre_radius_mm: self.centre_radius as f32,
             rings,
         }
     }
@@ -95,15 +102,33 @@ gpu_struct! {
     /// What `sss_pass.wgsl` reads at `@group(1) @binding(0)` (its `KernelUniform`, member for
     /// member).
     pub struct KernelUniform {
-        /// x: rings used, y: angles per ring, z: depth tolerance (relative pixel size).
-        pub counts: [f32; 4],
+        /// Rings used.
+        pub ring_count: u32,
+        /// Directions sampled per ring.
+        pub angles: u32,
+        /// How far a sample's pixel size may differ from the centre's (relative) and still
+        /// count as the same surface.
+        pub depth_tolerance: f32,
+        pub _pad0: f32,
         /// The clear colour as displayed (where nothing was drawn).
         pub background: [f32; 4],
-        /// rgb: mass of the inner disk; w: its radius (mm).
-        pub centre: [f32; 4],
-        /// rgb: mass of ring k; w: its outer radius (mm).
-        pub rings: [[f32; 4]; MAX_RINGS],
+        /// Mass of the inner disk (taken at the pixel) …
+        pub centre_mass: [f32; 3],
+        /// … and its radius (mm).
+        pub centre_radius_mm: f32,
+        /// Ring k starts where ring k − 1 ends (ring 0 at the centre's radius).
+        pub rings: [Ring; MAX_RINGS],
     }
+}
+
+/// One ring of the kernel as the subsurface pass reads it (`Ring` in `sss_pass.wgsl`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct Ring {
+    /// Its mass per channel.
+    pub mass: [f32; 3],
+    /// Its outer radius (mm).
+    pub outer_mm: f32,
 }
 
 model_uniform! {
@@ -303,12 +328,13 @@ pub fn local(pm: &ModelParams, px: &Pixel) -> DVec3 {
 }
 
 /// What the spatial models' descriptors share (their uniform, the per-pixel part and its
-/// probed oblique table); each fills in the rest (`..subsurface::SPATIAL`).
+/// probed oblique table, and for the screen-space ones their whole WGSL module,
+/// `subsurface.wgsl`); each fills in the rest (`..subsurface::SPATIAL`).
 pub const SPATIAL: Descriptor = Descriptor {
     name: "",
     label: "",
     module: "subsurface",
-    wgsl: "",
+    wgsl: include_str!("../../../shaders/subsurface.wgsl"),
     variant: None,
     effects: Effects::NONE,
     uniform: SubsurfaceUniform::LAYOUT,
@@ -345,8 +371,9 @@ mod tests {
             assert_eq!(*r, w[1]);
         }
         let u = k.pack(8, [0.0; 4]);
-        assert_eq!(u.counts[0], 2.0);
-        assert_eq!(u.rings[1], [0.05, 0.05, 0.05, 2.0]);
-        assert_eq!(u.rings[2], [0.0; 4]);
+        assert_eq!(u.ring_count, 2);
+        let ring = |mass: [f32; 3], outer_mm| Ring { mass, outer_mm };
+        assert_eq!(u.rings[1], ring([0.05; 3], 2.0));
+        assert_eq!(u.rings[2], ring([0.0; 3], 0.0));
     }
 }

@@ -28,7 +28,7 @@ struct SkinGpu {
     palette: Vec<Mat4>,
 }
 
-pub struct CharacterGpu {
+pub struct SkinnedGpu {
     parts: Vec<Part>,
     skins: Vec<SkinGpu>,
     /// Triangles drawn per frame.
@@ -37,7 +37,7 @@ pub struct CharacterGpu {
     pub normal_mapped: bool,
 }
 
-impl CharacterGpu {
+impl SkinnedGpu {
     /// Uploads every skinned mesh of `model`. Errors if the glTF has no skinned mesh.
     pub fn new(
         device: &wgpu::Device,
@@ -136,8 +136,15 @@ impl CharacterGpu {
         })
     }
 
-    /// Computes the joint palettes for `pose` placed at `world` and uploads them.
-    pub fn update_pose(&mut self, queue: &wgpu::Queue, model: &Model, pose: &Pose, world: Mat4) {
+    /// Computes the joint palettes for `pose` placed at `world` and uploads them; returns
+    /// the uploads (one per skin).
+    pub fn update_pose(
+        &mut self,
+        queue: &wgpu::Queue,
+        model: &Model,
+        pose: &Pose,
+        world: Mat4,
+    ) -> u32 {
         for skin in &mut self.skins {
             joint_palette(model, skin.skin, pose, &mut skin.palette);
             for m in &mut skin.palette {
@@ -145,9 +152,10 @@ impl CharacterGpu {
             }
             queue.write_buffer(&skin.buffer, 0, bytemuck::cast_slice(&skin.palette));
         }
+        self.skins.len() as u32
     }
 
-    pub(super) fn draw<'p>(&'p self, pass: &mut wgpu::RenderPass<'p>) -> u32 {
+    pub fn draw(&self, pass: &mut wgpu::RenderPass<'_>) -> u32 {
         for part in &self.parts {
             pass.set_bind_group(2, &part.bind_group, &[]);
             pass.set_vertex_buffer(0, part.mesh.vertices.slice(..));

@@ -5,17 +5,19 @@
 //! never writing depth, so whatever stands on the ground covers its own shadow; alpha — the
 //! subsurface pass's marker — and the spread target are write-masked off.
 //!
-//! The pipelines exist only in a renderer that enabled the shadows and has a caster loaded;
-//! the split variant only when the renderer has the subsurface pass. Per frame the blobs are
+//! The pass exists only in a renderer that enabled the shadows and has a caster loaded; the
+//! split variant only where the scene can reach a screen-space model. Per frame the blobs are
 //! staged into buffers reserved at load and uploaded only when they changed.
 
 use glam::{Mat4, Vec3};
 
-use super::props::{PropInstance, PropKind};
-use super::rig::CharacterBound;
-use super::sss_pass::SPLIT_FORMAT;
-use super::targets::{depth_state, multisample, MSAA_SAMPLES};
+use super::subsurface::SPLIT_FORMAT;
+use super::{BuildCtx, Pass, Stage};
 use crate::asset::Model;
+use crate::render::prepared::{Drawn, PassFrame, PreparedFrame};
+use crate::render::resources::Resources;
+use crate::render::targets::{depth_state, multisample, MSAA_SAMPLES};
+use crate::scene::{CharacterBound, FramePacket, PropInstance, PropKind, CHARACTER};
 use crate::shader::{compose, ShaderDefs};
 
 /// Height of the ground the track stands on (m).
@@ -170,28 +172,24 @@ pub fn shader_source(split: bool) -> String {
 }
 
 /// The GPU side: pipelines, the reserved instance buffer and the staged blobs.
-pub struct BlobShadows {
-    pub pipeline: wgpu::RenderPipeline,
-    /// For frames with the subsurface pass; only in a renderer that has that pass.
-    pub split: Option<wgpu::RenderPipeline>,
+pub struct BlobsPass {
+    pipeline: wgpu::RenderPipeline,
+    /// For frames with the subsurface pass.
+    split: Option<wgpu::RenderPipeline>,
     instances: wgpu::Buffer,
     /// Slot 0: the character's blob; then the props'. Capacity [`MAX_BLOBS`], never grown.
     staged: Vec<Blob>,
     uploaded: Vec<Blob>,
-    /// Whether the blobs are drawn (the pipelines stay built when they are switched off).
+    /// Whether the blobs are drawn (the pass stays built when they are switched off).
     pub enabled: bool,
 }
 
-impl BlobShadows {
-    pub fn new(
-        device: &wgpu::Device,
-        frame_layout: &wgpu::BindGroupLayout,
-        format: wgpu::TextureFormat,
-        subsurface: bool,
-    ) -> Self {
+impl BlobsPass {
+    fn new(ctx: &BuildCtx) -> Self {
+        let device = ctx.device;
         let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("blob shadow"),
-            bind_group_layouts: &[Some(frame_layout)],
+            bind_group_layouts: &[Some(&ctx.layouts.frame)],
             immediate_size: 0,
         });
         let multiply = wgpu::BlendState {
@@ -225,7 +223,7 @@ impl BlobShadows {
                     }),
                 ]
             } else {
-                vec![shade(format)]
+                vec![shade(ctx.format)]
             };
             pipeline(device, &layout, &module, &targets)
         };
@@ -239,7 +237,7 @@ impl BlobShadows {
         staged.push(Blob::default());
         Self {
             pipeline: build(false),
-            split: subsurface.then(|| build(true)),
+            split: ctx.set.needs_subsurface_pass().then(|| build(true)),
             instances,
             staged,
             uploaded: Vec::with_capacity(MAX_BLOBS),
@@ -247,19 +245,8 @@ impl BlobShadows {
         }
     }
 
-    /// Stages the character's blob (uploaded with the props' by [`Self::set_props`]).
-    pub fn set_character(&mut self, bound: &CharacterBound, world: Mat4) {
-        self.staged[0] = Blob::character(bound, world);
-    }
-
-    /// Stages the casting props' blobs and uploads every staged blob if any changed. Returns
-    /// the number of uploads (0 or 1). No allocation: the buffers were reserved at load.
-    pub fn set_props(
-        &mut self,
-        queue: &wgpu::Queue,
-        casters: &Casters,
-        instances: &[PropInstance],
-    ) -> u32 {
+    /// Stages the casting props' blobs of `instances`.
+    fn stage_props(&mut self, casters: &Casters, instances: &[PropInstance]) {
         self.staged.truncate(1);
         for i in instances {
             if self.staged.len() == MAX_BLOBS {
@@ -269,11 +256,15 @@ impl BlobShadows {
                 self.staged.push(Blob::prop(f, i.transform));
             }
         }
+    }
+
+    /// Uploads every staged blob if any changed; returns the uploads (0 or 1). A run moves
+    /// the runner every frame but the props only now and then: then only the character's
+    /// slot is written. No allocation: the buffers were reserved at load.
+    fn upload(&mut self, queue: &wgpu::Queue) -> u32 {
         if self.staged == self.uploaded {
             return 0;
         }
-        // A run moves the runner every frame but the props only now and then: then only the
-        // character's slot is written.
         let props_same =
             self.uploaded.len() == self.staged.len() && self.uploaded[1..] == self.staged[1..];
         let upload = if props_same { 1 } else { self.staged.len() };
@@ -287,24 +278,58 @@ impl BlobShadows {
         1
     }
 
-    /// Draws the uploaded blobs — the props' and, when `character`, the character's — with
-    /// `pipeline` into the open pass (group 0 bound, the floor drawn). Returns the draw calls
-    /// (0 or 1).
-    pub fn draw<'p>(
-        &'p self,
-        pass: &mut wgpu::RenderPass<'p>,
-        pipeline: &'p wgpu::RenderPipeline,
-        character: bool,
-    ) -> u32 {
-        let first = if character { 0 } else { 1 };
-        let last = self.uploaded.len() as u32;
-        if !self.enabled || first >= last {
-            return 0;
+    /// The blobs a frame draws: the props' and, when the subject is drawn, the character's.
+    fn range(&self, frame: &PreparedFrame) -> std::ops::Range<u32> {
+        let first = if frame.subject.is_some() { 0 } else { 1 };
+        first..(self.uploaded.len() as u32).max(first)
+    }
+}
+
+impl Pass for BlobsPass {
+    fn build(ctx: &BuildCtx) -> Option<Self> {
+        ctx.blobs.then(|| Self::new(ctx))
+    }
+
+    fn stage(&self) -> Stage {
+        Stage::Scene
+    }
+
+    /// Stages the subject's blob where it was placed and the props' where the frame placed
+    /// them; runs when switched on in a frame with props (the blobs lie on the floor).
+    fn prepare(
+        &mut self,
+        queue: &wgpu::Queue,
+        packet: &FramePacket,
+        frame: &mut PreparedFrame,
+        res: &Resources,
+    ) -> PassFrame {
+        if res.casters.character.is_some() {
+            self.staged[0] = Blob::character(&CHARACTER, res.subjects.world);
         }
+        if let Some(placed) = packet.props {
+            self.stage_props(&res.casters, placed);
+        }
+        frame.uploads += self.upload(queue);
+        let runs = self.enabled && frame.draw.props && !self.range(frame).is_empty();
+        PassFrame { runs, steps: 0 }
+    }
+
+    /// The blobs, blended over the floor and depth-tested against everything.
+    fn draw(
+        &self,
+        frame: &PreparedFrame,
+        _res: &Resources,
+        pass: &mut wgpu::RenderPass<'_>,
+    ) -> Drawn {
+        let pipeline = match (frame.split, &self.split) {
+            (Some(_), Some(split)) => split,
+            (Some(_), None) => return Drawn::default(),
+            (None, _) => &self.pipeline,
+        };
         pass.set_pipeline(pipeline);
         pass.set_vertex_buffer(0, self.instances.slice(..));
-        pass.draw(0..6, first..last);
-        1
+        pass.draw(0..6, self.range(frame));
+        Drawn::calls(1)
     }
 }
 
@@ -350,7 +375,6 @@ fn pipeline(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::render::rig::CHARACTER;
 
     #[test]
     fn both_variants_parse_and_validate() {

@@ -6,13 +6,17 @@
 //! its diffusion kernel (a table in its LUT), so light bleeds into the shadow as far as the
 //! material carries it — also far beyond what a few filter taps reach.
 //!
-//! Built only when the renderer's pipelines reach such a model; run only in frames that draw
-//! one with a shadow map. Cost: one seed pass (25 gathers per grid texel) and as many jump
-//! passes (nine loads each) as the material's reach needs — distances beyond
-//! [`REACH_MM`] are never read — over the grid: 128² for the game's 1024² map (4 jump
-//! passes), independent of the screen's size.
+//! Built only where the scene reaches such a model; run only in frames that draw one with a
+//! shadow map. Cost: one seed pass (25 gathers per grid texel) and as many jump passes (nine
+//! loads each) as the material's reach needs — distances beyond [`REACH_MM`] are never read —
+//! over the grid: 128² for the game's 1024² map (4 jump passes), independent of the screen.
 
-use super::shadow_map::ShadowMap;
+use super::{BuildCtx, Pass, Stage};
+use crate::render::layouts;
+use crate::render::light_maps::{LightMaps, PenumbraGrid};
+use crate::render::prepared::{Drawn, PassFrame, PreparedFrame};
+use crate::render::resources::Resources;
+use crate::scene::FramePacket;
 
 /// Shadow-map texels per grid texel (per side).
 pub const BLOCK: u32 = 8;
@@ -24,25 +28,41 @@ pub const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 pub const EDGE_GAP_M: f32 = 0.01;
 /// Uniform slot stride (the minimum uniform offset alignment).
 const SLOT: u64 = 256;
+/// The most passes a grid can need: the seed and one jump per halving of 2¹⁶ texels.
+const MAX_PASSES: usize = 17;
 
-/// A pass's bind groups: reading target 0, reading target 1.
-struct Pass {
-    groups: [wgpu::BindGroup; 2],
+crate::shading::uniform::gpu_struct! {
+/// One pass's constants (`Jump` in `penumbra.wgsl`).
+pub struct Jump {
+    /// This pass's step (grid texels; 0: the seed pass).
+    pub step: f32,
+    /// The grid's size (texels per side).
+    pub grid: f32,
+    /// Shadow-map texels per grid texel.
+    pub block: f32,
+    /// The depth step that makes an edge (the map's depth units).
+    pub edge_gap: f32,
+}
 }
 
-pub struct Penumbra {
-    /// Grid texels per side.
-    pub size: u32,
-    targets: [wgpu::TextureView; 2],
-    /// The view holding the finished map (what receivers bind).
-    pub result: wgpu::TextureView,
-    seed: wgpu::RenderPipeline,
-    jump: wgpu::RenderPipeline,
-    uniforms: wgpu::Buffer,
-    /// The seed pass, then one per possible jump.
-    passes: Vec<Pass>,
-    /// Jump passes this frame (set by `prepare`).
-    jumps: std::cell::Cell<usize>,
+/// The composed pass shader.
+pub fn shader_source() -> String {
+    crate::shader::compose("penumbra", &crate::shader::ShaderDefs::new())
+        .expect("built-in shaders compose")
+}
+
+/// Steps of the jump passes for a grid of `size` texels: size/2, size/4, …, 1.
+pub fn steps(size: u32) -> impl Iterator<Item = u32> {
+    let first = size.next_power_of_two() / 2;
+    std::iter::successors((first >= 1).then_some(first), |s| (*s > 1).then_some(s / 2))
+}
+
+/// The jump steps for a grid of `size` texels over a map `map_width_m` wide: the halvings
+/// from the first power of two that reaches [`REACH_MM`] down to 1.
+pub fn jump_steps(size: u32, map_width_m: f32) -> impl Iterator<Item = u32> {
+    let texel_mm = map_width_m * 1000.0 / size.max(1) as f32;
+    let reach = (REACH_MM / texel_mm.max(1e-6)).ceil().clamp(1.0, 1e6) as u32;
+    steps(size).filter(move |&s| s <= reach.next_power_of_two())
 }
 
 /// The bind group layout of both passes.
@@ -51,7 +71,7 @@ fn layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("penumbra"),
         entries: &[
-            super::layouts::uniform(0, fragment),
+            layouts::uniform(0, fragment),
             wgpu::BindGroupLayoutEntry {
                 binding: 1,
                 visibility: fragment,
@@ -82,62 +102,24 @@ fn layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
     })
 }
 
-/// The composed pass shader.
-pub fn shader_source() -> String {
-    crate::shader::compose("penumbra", &crate::shader::ShaderDefs::new())
-        .expect("built-in shaders compose")
+pub struct PenumbraPass {
+    /// The grid size it was built for (texels per side).
+    size: u32,
+    seed: wgpu::RenderPipeline,
+    jump: wgpu::RenderPipeline,
+    uniforms: wgpu::Buffer,
+    /// Per pass (the seed, then one per possible jump): its bind groups reading grid target
+    /// 0 and grid target 1.
+    groups: Vec<[wgpu::BindGroup; 2]>,
+    /// The constants last written (steps, edge gap): unchanged ones are not written again.
+    written: Option<(u32, f32)>,
 }
 
-/// Steps of the jump passes for a grid of `size` texels: size/2, size/4, …, 1.
-pub fn steps(size: u32) -> Vec<u32> {
-    let mut out = Vec::new();
-    let mut s = size.next_power_of_two() / 2;
-    while s >= 1 {
-        out.push(s);
-        s /= 2;
-    }
-    out
-}
-
-/// The jump steps for a grid of `size` texels over a map `map_width_m` wide: the halvings
-/// from the first power of two that reaches [`REACH_MM`] down to 1.
-pub fn jump_steps(size: u32, map_width_m: f32) -> Vec<u32> {
-    let texel_mm = map_width_m * 1000.0 / size.max(1) as f32;
-    let reach = (REACH_MM / texel_mm.max(1e-6)).ceil().clamp(1.0, 1e6) as u32;
-    steps(size)
-        .into_iter()
-        .filter(|&s| s <= reach.next_power_of_two())
-        .collect()
-}
-
-/// A grid texture (render target and bound for loads).
-pub fn grid_texture(device: &wgpu::Device, size: u32, label: &str) -> wgpu::TextureView {
-    device
-        .create_texture(&wgpu::TextureDescriptor {
-            label: Some(label),
-            size: wgpu::Extent3d {
-                width: size,
-                height: size,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: FORMAT,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
-            view_formats: &[],
-        })
-        .create_view(&wgpu::TextureViewDescriptor::default())
-}
-
-impl Penumbra {
-    /// The map for `shadow` (its grid: a quarter of the shadow map's resolution).
-    pub fn new(device: &wgpu::Device, shadow: &ShadowMap) -> Self {
-        let size = (shadow.size / BLOCK).max(1);
-        let targets = [
-            grid_texture(device, size, "penumbra A"),
-            grid_texture(device, size, "penumbra B"),
-        ];
+impl PenumbraPass {
+    /// The pass over `grid`, reading the shadow map of `maps`.
+    fn new(ctx: &BuildCtx, maps: &LightMaps, grid: &PenumbraGrid) -> Self {
+        let device = ctx.device;
+        let size = grid.size;
         let bind_layout = layout(device);
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("penumbra"),
@@ -175,10 +157,10 @@ impl Penumbra {
                 cache: None,
             })
         };
-        let steps = steps(size);
+        let passes = steps(size).count() + 1;
         let uniforms = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("penumbra passes"),
-            size: SLOT * (steps.len() as u64 + 1),
+            size: SLOT * passes as u64,
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
@@ -198,12 +180,12 @@ impl Penumbra {
                         resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
                             buffer: &uniforms,
                             offset: slot * SLOT,
-                            size: wgpu::BufferSize::new(16),
+                            size: wgpu::BufferSize::new(std::mem::size_of::<Jump>() as u64),
                         }),
                     },
                     wgpu::BindGroupEntry {
                         binding: 1,
-                        resource: wgpu::BindingResource::TextureView(&shadow.view),
+                        resource: wgpu::BindingResource::TextureView(&maps.shadow),
                     },
                     wgpu::BindGroupEntry {
                         binding: 2,
@@ -216,50 +198,98 @@ impl Penumbra {
                 ],
             })
         };
-        let passes = (0..=steps.len())
-            .map(|k| Pass {
-                groups: [group(k as u64, &targets[0]), group(k as u64, &targets[1])],
-            })
+        let groups = (0..passes as u64)
+            .map(|k| [group(k, &grid.targets[0]), group(k, &grid.targets[1])])
             .collect();
         Self {
             size,
-            result: targets[0].clone(),
-            targets,
             seed: pipeline("fs_seed"),
             jump: pipeline("fs_jump"),
             uniforms,
-            passes,
-            jumps: std::cell::Cell::new(steps.len()),
+            groups,
+            written: None,
+        }
+    }
+}
+
+impl Pass for PenumbraPass {
+    fn build(ctx: &BuildCtx) -> Option<Self> {
+        let maps = ctx.light_maps?;
+        let grid = maps.penumbra.as_ref()?;
+        ctx.set
+            .models
+            .iter()
+            .any(|m| m.effects().penumbra)
+            .then(|| Self::new(ctx, maps, grid))
+    }
+
+    /// Built for another grid (the light maps were made again at another size).
+    fn stale(&self, ctx: &BuildCtx) -> bool {
+        let grid = ctx.light_maps.and_then(|m| m.penumbra.as_ref());
+        grid.map(|g| g.size) != Some(self.size)
+    }
+
+    fn stage(&self) -> Stage {
+        Stage::Light
+    }
+
+    /// Runs in frames with a shadow map that draw a model with the `penumbra` effect: as
+    /// many jump passes as reach [`REACH_MM`] over the map's width this frame.
+    fn prepare(
+        &mut self,
+        queue: &wgpu::Queue,
+        _packet: &FramePacket,
+        frame: &mut PreparedFrame,
+        _res: &Resources,
+    ) -> PassFrame {
+        let reads = frame.draw.character
+            && frame.subject.is_some()
+            && frame.draw.shading.is_some_and(|m| m.effects().penumbra);
+        if !(frame.shadow.drawn && reads) {
+            return PassFrame::default();
+        }
+        let shadow = &frame.shadow;
+        let gap = EDGE_GAP_M * shadow.depth_per_m;
+        let jumps = jump_steps(self.size, shadow.width_m()).count() as u32;
+        if self.written != Some((jumps, gap)) {
+            let first = std::iter::once(0);
+            let all = first.chain(jump_steps(self.size, shadow.width_m()));
+            for (k, step) in all.enumerate().take(MAX_PASSES) {
+                let jump = Jump {
+                    step: step as f32,
+                    grid: self.size as f32,
+                    block: BLOCK as f32,
+                    edge_gap: gap,
+                };
+                queue.write_buffer(&self.uniforms, k as u64 * SLOT, bytemuck::bytes_of(&jump));
+                frame.uploads += 1;
+            }
+            self.written = Some((jumps, gap));
+        }
+        let u = &mut frame.uniform;
+        u.penumbra_drawn = 1;
+        u.penumbra_grid = self.size as f32;
+        u.edge_gap = gap;
+        PassFrame {
+            runs: true,
+            steps: jumps,
         }
     }
 
-    /// Writes the passes' constants for this frame: `gap` is [`EDGE_GAP_M`] in the map's
-    /// depth units, `map_width_m` the shadow map's width at the casters. The jumps start at
-    /// the step that reaches [`REACH_MM`].
-    pub fn prepare(&self, queue: &wgpu::Queue, gap: f32, map_width_m: f32) {
-        let size = self.size as f32;
-        let steps = jump_steps(self.size, map_width_m);
-        self.jumps.set(steps.len());
-        let mut data = vec![0u8; self.passes.len() * SLOT as usize];
-        for (k, chunk) in data
-            .chunks_mut(SLOT as usize)
-            .enumerate()
-            .take(steps.len() + 1)
-        {
-            let step = if k == 0 { 0.0 } else { steps[k - 1] as f32 };
-            let v = [step, size, BLOCK as f32, gap];
-            chunk[..16].copy_from_slice(bytemuck::cast_slice(&v));
-        }
-        queue.write_buffer(&self.uniforms, 0, &data);
-    }
-
-    /// Records the seed pass and this frame's jump passes (one full-screen draw each; returns
-    /// their number); the last writes target 0 (the one receivers bind), so the seed goes
-    /// where the parity puts it.
-    pub fn encode(&self, encoder: &mut wgpu::CommandEncoder) -> u32 {
-        let jumps = self.jumps.get();
+    /// The seed pass and this frame's jump passes (one full-screen draw each); the last writes
+    /// grid target 0 (the one receivers bind), so the seed goes where the parity puts it.
+    fn encode(
+        &self,
+        frame: &PreparedFrame,
+        res: &Resources,
+        encoder: &mut wgpu::CommandEncoder,
+    ) -> Drawn {
+        let Some(grid) = res.light_maps.as_ref().and_then(|m| m.penumbra.as_ref()) else {
+            return Drawn::default();
+        };
+        let jumps = frame.pass(<Self as super::Slot>::SLOT).steps as usize;
         let mut target = jumps % 2;
-        for (k, p) in self.passes.iter().take(jumps + 1).enumerate() {
+        for (k, groups) in self.groups.iter().take(jumps + 1).enumerate() {
             let seed = k == 0;
             if !seed {
                 target = 1 - target;
@@ -271,7 +301,7 @@ impl Penumbra {
                     "penumbra jump"
                 }),
                 color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: &self.targets[target],
+                    view: &grid.targets[target],
                     depth_slice: None,
                     resolve_target: None,
                     ops: wgpu::Operations {
@@ -286,10 +316,10 @@ impl Penumbra {
             });
             pass.set_pipeline(if seed { &self.seed } else { &self.jump });
             // Jumps read the other target; the seed reads none (bound: the other one).
-            pass.set_bind_group(0, &p.groups[1 - target], &[]);
+            pass.set_bind_group(0, &groups[1 - target], &[]);
             pass.draw(0..3, 0..1);
         }
-        jumps as u32 + 1
+        Drawn::calls(jumps as u32 + 1)
     }
 }
 
@@ -299,13 +329,16 @@ mod tests {
 
     #[test]
     fn jump_steps_halve_down_to_one() {
-        assert_eq!(steps(256), vec![128, 64, 32, 16, 8, 4, 2, 1]);
-        assert_eq!(steps(1), Vec::<u32>::new());
-        assert_eq!(steps(5), vec![4, 2, 1]);
+        let steps_of = |s: u32| steps(s).collect::<Vec<_>>();
+        assert_eq!(steps_of(256), vec![128, 64, 32, 16, 8, 4, 2, 1]);
+        assert_eq!(steps_of(1), Vec::<u32>::new());
+        assert_eq!(steps_of(5), vec![4, 2, 1]);
         // The game's grid: 128 texels over ~2.1 m (16.4 mm each) need 8 texels of reach.
-        assert_eq!(jump_steps(128, 2.1), vec![8, 4, 2, 1]);
-        assert_eq!(jump_steps(128, 1.9), vec![16, 8, 4, 2, 1]);
+        let jumps = |s: u32, w: f32| jump_steps(s, w).collect::<Vec<_>>();
+        assert_eq!(jumps(128, 2.1), vec![8, 4, 2, 1]);
+        assert_eq!(jumps(128, 1.9), vec![16, 8, 4, 2, 1]);
         // A fine map reaches as far as its grid allows.
-        assert_eq!(jump_steps(16, 0.01), steps(16));
+        assert_eq!(jumps(16, 0.01), steps_of(16));
+        assert!(steps_of(1 << 16).len() < MAX_PASSES);
     }
 }

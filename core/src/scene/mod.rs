@@ -1,5 +1,17 @@
-//! What is loaded and where it stands: the character, the props, the light, and helpers to
-//! frame the character for a camera.
+//! What is loaded and where it stands: the character, the props, the light, the stage, one
+//! frame as plain data, and helpers to frame the character for a camera. Nothing here holds a
+//! GPU object: the game, the governor and the stills describe scenes with these types and the
+//! renderer draws them.
+
+mod frame;
+mod light;
+mod props;
+mod stage;
+
+pub use frame::{DrawSet, FramePacket, FrameView, SubjectPose};
+pub use light::Light;
+pub use props::{PropInstance, PropKind};
+pub use stage::{key_light, CharacterBound, CHARACTER, EXPOSURE, KEY_LIGHT_OFFSET};
 
 use std::path::Path;
 use std::sync::{Arc, OnceLock};
@@ -8,7 +20,6 @@ use glam::{Mat4, Quat, Vec3};
 
 use crate::anim::{first_skinned_mesh, skin_positions, Pose};
 use crate::asset::{load_gltf, load_gltf_slice, AssetError, Model};
-use crate::render::{PropInstance, PropKind};
 
 /// Everything the demo and the game load at start (nothing is read from disk later).
 pub struct SceneAssets {

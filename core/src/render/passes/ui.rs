@@ -1,19 +1,14 @@
 //! The UI's GPU side: one pipeline (premultiplied alpha blending, no depth write, depth test
 //! Always), the skin atlas texture, a fixed-capacity vertex buffer created once and one draw
-//! call. It is meant to be drawn last inside the frame's single MSAA pass.
-//!
-//! ```text
-//! // load
-//! let (rgba, w, h) = dermis_core::ui::atlas_rgba();
-//! let mut ui_gpu = UiRenderer::new(&device, &queue, format, MSAA_SAMPLES, &rgba, w, h);
-//! // every frame, after ui.end()
-//! ui_gpu.resize(&queue, width, height);           // writes only when the size changed
-//! if ui.needs_upload() { ui_gpu.upload(&queue, ui.vertices()); ui.mark_uploaded(); }
-//! // inside the pass, after everything else
-//! ui_gpu.draw(&mut pass);
-//! ```
+//! call, last in the frame's last pass. The frame's packet hands over the UI's vertices when
+//! they changed (`crate::ui::Ui::needs_upload`); the screen size comes from the frame. Built
+//! where the renderer draws a UI (the game).
 
-use super::targets::{depth_state, multisample};
+use super::{BuildCtx, Pass, Stage};
+use crate::render::prepared::{Drawn, PassFrame, PreparedFrame};
+use crate::render::resources::Resources;
+use crate::render::targets::{depth_state, multisample, MSAA_SAMPLES};
+use crate::scene::FramePacket;
 use crate::shader::{compose, ShaderDefs};
 use crate::ui::{UiVertex, MAX_VERTICES};
 
@@ -33,7 +28,7 @@ pub fn ui_vertex_layout() -> wgpu::VertexBufferLayout<'static> {
     }
 }
 
-pub struct UiRenderer {
+pub struct UiPass {
     pipeline: wgpu::RenderPipeline,
     bind_group: wgpu::BindGroup,
     params: wgpu::Buffer,
@@ -43,26 +38,18 @@ pub struct UiRenderer {
     srgb: bool,
 }
 
-impl UiRenderer {
+impl UiPass {
     /// Vertex capacity of the GPU buffer (matches the UI's own limit).
     pub const CAPACITY: usize = MAX_VERTICES;
 
-    /// Creates every UI resource (once, at load). `atlas_rgba` is `w`×`h` RGBA8, straight
-    /// alpha, as [`crate::ui::atlas_rgba`] returns it.
-    pub fn new(
-        device: &wgpu::Device,
-        queue: &wgpu::Queue,
-        format: wgpu::TextureFormat,
-        msaa_samples: u32,
-        atlas_rgba: &[u8],
-        w: u32,
-        h: u32,
-    ) -> Self {
-        assert_eq!(atlas_rgba.len(), (w * h * 4) as usize, "UI atlas size");
-        let view = super::texture::upload_single(
+    /// Creates every UI resource (once, at load), with the embedded skin atlas
+    /// ([`crate::ui::atlas_rgba`]: RGBA8, straight alpha).
+    fn new(device: &wgpu::Device, queue: &wgpu::Queue, format: wgpu::TextureFormat) -> Self {
+        let (atlas_rgba, w, h) = crate::ui::atlas_rgba();
+        let view = crate::render::texture::upload_single(
             device,
             queue,
-            atlas_rgba,
+            &atlas_rgba,
             (w, h),
             wgpu::TextureFormat::Rgba8Unorm,
             "ui atlas",
@@ -160,7 +147,7 @@ impl UiRenderer {
                 ..Default::default()
             },
             depth_stencil: Some(depth_state(false, wgpu::CompareFunction::Always)),
-            multisample: multisample(msaa_samples),
+            multisample: multisample(MSAA_SAMPLES),
             fragment: Some(wgpu::FragmentState {
                 module: &module,
                 entry_point: Some("fs_main"),
@@ -183,15 +170,16 @@ impl UiRenderer {
             screen: [0, 0],
             srgb: format.is_srgb(),
         };
-        r.resize(queue, 1, 1);
+        r.set_screen(queue, (1, 1));
         r
     }
 
-    /// Sets the surface size (pixels) the vertices are in; writes only when it changed.
-    pub fn resize(&mut self, queue: &wgpu::Queue, width: u32, height: u32) {
+    /// Sets the surface size (pixels) the vertices are in; writes only when it changed
+    /// (returns whether it wrote).
+    fn set_screen(&mut self, queue: &wgpu::Queue, (width, height): (u32, u32)) -> bool {
         let size = [width.max(1), height.max(1)];
         if size == self.screen {
-            return;
+            return false;
         }
         self.screen = size;
         let data = [
@@ -201,11 +189,11 @@ impl UiRenderer {
             0.0,
         ];
         queue.write_buffer(&self.params, 0, bytemuck::cast_slice(&data));
+        true
     }
 
-    /// Uploads the UI's vertices (call only when [`crate::ui::Ui::needs_upload`]); at most
-    /// [`UiRenderer::CAPACITY`] are kept.
-    pub fn upload(&mut self, queue: &wgpu::Queue, vertices: &[UiVertex]) {
+    /// Uploads the UI's vertices; at most [`UiPass::CAPACITY`] are kept.
+    fn upload(&mut self, queue: &wgpu::Queue, vertices: &[UiVertex]) {
         let n = vertices.len().min(Self::CAPACITY);
         let n = n - n % 3;
         if n > 0 {
@@ -218,12 +206,44 @@ impl UiRenderer {
     pub fn vertex_count(&self) -> u32 {
         self.count
     }
+}
 
-    /// Draws the whole UI with one draw call; returns the number of draw calls (0 or 1).
-    pub fn draw(&self, pass: &mut wgpu::RenderPass<'_>) -> u32 {
-        if self.count == 0 {
-            return 0;
+impl Pass for UiPass {
+    fn build(ctx: &BuildCtx) -> Option<Self> {
+        ctx.ui.then(|| Self::new(ctx.device, ctx.queue, ctx.format))
+    }
+
+    fn stage(&self) -> Stage {
+        Stage::Last
+    }
+
+    /// Takes the frame's size and the UI's vertices when they changed; runs when there is
+    /// anything to draw.
+    fn prepare(
+        &mut self,
+        queue: &wgpu::Queue,
+        packet: &FramePacket,
+        frame: &mut PreparedFrame,
+        _res: &Resources,
+    ) -> PassFrame {
+        frame.uploads += u32::from(self.set_screen(queue, frame.size));
+        if let Some(vertices) = packet.ui {
+            self.upload(queue, vertices);
+            frame.uploads += 1;
         }
+        PassFrame {
+            runs: frame.draw.ui && self.count > 0,
+            steps: 0,
+        }
+    }
+
+    /// The whole UI with one draw call.
+    fn draw(
+        &self,
+        _frame: &PreparedFrame,
+        _res: &Resources,
+        pass: &mut wgpu::RenderPass<'_>,
+    ) -> Drawn {
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, &self.bind_group, &[]);
         pass.set_vertex_buffer(
@@ -232,6 +252,6 @@ impl UiRenderer {
                 .slice(..self.count as u64 * std::mem::size_of::<UiVertex>() as u64),
         );
         pass.draw(0..self.count, 0..1);
-        1
+        Drawn::calls(1)
     }
 }

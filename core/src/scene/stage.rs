@@ -5,13 +5,15 @@
 
 use glam::Vec3;
 
-use super::frame::Light;
+use super::light::Light;
 use crate::camera::Capsule;
 
 /// Exposure before tone mapping (the game, the demo, stills).
 pub const EXPOSURE: f32 = 1.6;
 
-pub use super::frame::KEY_LIGHT_OFFSET;
+/// Where the key light stands relative to the character's feet: above, in front of and to the
+/// right of it.
+pub const KEY_LIGHT_OFFSET: Vec3 = Vec3::new(1.5, 3.0, 2.5);
 
 /// The key light for a character standing at `feet`.
 pub fn key_light(feet: Vec3) -> Light {

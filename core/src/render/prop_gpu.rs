@@ -1,5 +1,6 @@
-//! Static props (floor tiles, walls, furniture, obstacles), drawn instanced with the plain
-//! default-lit shader. Node transforms are baked into the vertices at load.
+//! A prop kind's GPU side: its meshes with node transforms baked into the vertices at load, a
+//! material bind group per part, and the instance buffer of its placements this frame (the
+//! props pass draws them instanced with the plain default-lit shader).
 
 use glam::{Mat3, Mat4, Vec3};
 use wgpu::util::DeviceExt;
@@ -9,59 +10,17 @@ use super::mesh::GpuMesh;
 use super::texture;
 use crate::asset::{Model, Primitive};
 use crate::camera::Frustum;
-
-/// The props the game and the demo scene use; each is a file in `assets/props/`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum PropKind {
-    FloorTile,
-    Wall,
-    Table,
-    Chair,
-    Obstacle,
-}
-
-impl PropKind {
-    pub const ALL: [PropKind; 5] = [
-        Self::FloorTile,
-        Self::Wall,
-        Self::Table,
-        Self::Chair,
-        Self::Obstacle,
-    ];
-
-    /// File name under `assets/props/`.
-    pub fn file(self) -> &'static str {
-        match self {
-            Self::FloorTile => "floor_tile.glb",
-            Self::Wall => "wall.glb",
-            Self::Table => "table.glb",
-            Self::Chair => "chair.glb",
-            Self::Obstacle => "obstacle.glb",
-        }
-    }
-}
-
-/// One placed prop.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct PropInstance {
-    pub kind: PropKind,
-    pub transform: Mat4,
-}
+use crate::scene::PropKind;
 
 struct Part {
     mesh: GpuMesh,
     material: wgpu::BindGroup,
 }
 
-pub(super) struct PropGpu {
+pub struct PropGpu {
     pub kind: PropKind,
     parts: Vec<Part>,
-    instances: wgpu::Buffer,
-    /// What the instance buffer holds now (capacity reserved once): unchanged lists are not
-    /// uploaded again.
-    uploaded: Vec<[[f32; 4]; 4]>,
-    capacity: u32,
-    pub count: u32,
+    /// Triangles of one instance.
     pub triangles: u32,
     /// The model's bounding sphere (centre, radius) in its own space, for culling.
     pub bound: (Vec3, f32),
@@ -133,19 +92,9 @@ impl PropGpu {
                 });
             }
         }
-        let instances = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("prop instances"),
-            size: MAX_INSTANCES as u64 * 64,
-            usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
         Self {
             kind,
             parts,
-            instances,
-            uploaded: Vec::with_capacity(MAX_INSTANCES as usize),
-            capacity: MAX_INSTANCES,
-            count: 0,
             triangles,
             bound: bounding_sphere(lo, hi),
         }
@@ -163,32 +112,13 @@ impl PropGpu {
         frustum.sphere_visible(transform.transform_point3(centre), radius * scale)
     }
 
-    /// Sets this kind's instance matrices (at most `MAX_INSTANCES`); uploads only when they
-    /// changed. Returns whether it uploaded.
-    pub fn set_instances(&mut self, queue: &wgpu::Queue, matrices: &[[[f32; 4]; 4]]) -> bool {
-        let n = matrices.len().min(self.capacity as usize);
-        self.count = n as u32;
-        if self.uploaded[..] == matrices[..n] {
-            return false;
-        }
-        self.uploaded.clear();
-        self.uploaded.extend_from_slice(&matrices[..n]);
-        if n > 0 {
-            queue.write_buffer(&self.instances, 0, bytemuck::cast_slice(&matrices[..n]));
-        }
-        true
-    }
-
-    pub fn draw<'p>(&'p self, pass: &mut wgpu::RenderPass<'p>) -> u32 {
-        if self.count == 0 {
-            return 0;
-        }
-        pass.set_vertex_buffer(1, self.instances.slice(..self.count as u64 * 64));
+    /// Draws `count` instances (instance buffer bound at slot 1); returns the draw calls.
+    pub fn draw(&self, pass: &mut wgpu::RenderPass<'_>, count: u32) -> u32 {
         for part in &self.parts {
             pass.set_bind_group(1, &part.material, &[]);
             pass.set_vertex_buffer(0, part.mesh.vertices.slice(..));
             pass.set_index_buffer(part.mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
-            pass.draw_indexed(0..part.mesh.index_count, 0, 0..self.count);
+            pass.draw_indexed(0..part.mesh.index_count, 0, 0..count);
         }
         self.parts.len() as u32
     }
