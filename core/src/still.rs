@@ -11,7 +11,7 @@ use crate::render::{
 use crate::scene::{frame_bounds, posed_bounds, showroom, SceneAssets};
 use crate::shading::{Material, ShadingModel};
 
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Shot {
     /// `None`: the unlit baseline.
     pub shading: Option<ShadingModel>,
@@ -102,9 +102,9 @@ impl StillRenderer {
         shot: &Shot,
     ) -> Result<FrameView, String> {
         let model = &assets.character;
-        if self.material != Some(shot.material) {
+        if self.material.as_ref() != Some(&shot.material) {
             self.renderer.set_material(&gpu.queue, &shot.material);
-            self.material = Some(shot.material);
+            self.material = Some(shot.material.clone());
         }
         self.pose.reset(model);
         if !model.animations.is_empty() {

@@ -24,7 +24,7 @@ pub fn frame_close_up(
             &Shot {
                 shading: Some(ShadingModel::BASELINE),
                 props: false,
-                ..*shot
+                ..shot.clone()
             },
         )?;
         let bg = &image.pixels[0..3];
@@ -113,7 +113,7 @@ pub fn blob_shadow_coverage(
 ) -> Result<f64, String> {
     let shot = Shot {
         props: true,
-        ..*shot
+        ..shot.clone()
     };
     still.renderer.set_blob_shadows(false);
     let off = still.render(gpu, assets, &shot)?;
