@@ -197,12 +197,20 @@ fn oversized_data_uri_is_refused() {
     );
 }
 
-/// Deterministic structural fuzzing of the JSON of a valid model: numbers replaced by
+/// Deterministic structural fuzzing of the JSON of valid models: numbers replaced by
 /// hostile values, strings swapped, keys dropped. Nothing may panic.
 #[test]
 fn json_mutations_never_panic() {
     count_panics();
-    let text = std::fs::read_to_string(common::data_dir().join("embedded.gltf")).unwrap();
+    // The skinned fixture, and the material fixtures (every material field and extension).
+    for file in ["embedded.gltf", "materials/skin.gltf", "materials/pbr.gltf"] {
+        mutations_never_panic(file);
+    }
+    assert_no_panics();
+}
+
+fn mutations_never_panic(file: &str) {
+    let text = std::fs::read_to_string(common::data_dir().join(file)).unwrap();
     let base: serde_json::Value = serde_json::from_str(&text).unwrap();
     let no_files = |_: &str| -> Result<Vec<u8>, String> { Err("no external files".into()) };
     let mut seed = 0x2545_f491_4f6c_dd1du64;
@@ -299,6 +307,5 @@ fn json_mutations_never_panic() {
             Ok(Err(_)) => {}
         }
     }
-    eprintln!("{loaded} of {iters} mutations still loaded");
-    assert_no_panics();
+    eprintln!("{file}: {loaded} of {iters} mutations still loaded");
 }
