@@ -150,7 +150,7 @@ impl Demo {
             .iter()
             .position(|m| m.name == self.material.name)
             .unwrap_or(0);
-        self.material = PRESETS[(i + 1) % PRESETS.len()];
+        self.material = PRESETS[(i + 1) % PRESETS.len()].clone();
     }
 
     pub fn title(&self) -> String {

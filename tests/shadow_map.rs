@@ -119,8 +119,8 @@ fn the_runner_casts_on_the_floor_and_on_itself_and_shadows_only_darken() {
 }
 
 fn skin1_set() -> (dermis_core::shading::Material, ReferenceSet) {
-    let m = reference::acceptance_materials()[0];
-    let set = ReferenceSet::load(&reference::file_for(&reference::default_dir(), m.name))
+    let [m, _] = reference::acceptance_materials();
+    let set = ReferenceSet::load(&reference::file_for(&reference::default_dir(), &m.name))
         .unwrap_or_else(|e| panic!("{e}"));
     (m, set)
 }

@@ -14,13 +14,14 @@ fn gpu() -> Gpu {
 fn set(m: &Material) -> ReferenceSet {
     ReferenceSet::load(&ground_truth::file_for(
         &ground_truth::default_dir(),
-        m.name,
+        &m.name,
     ))
     .unwrap_or_else(|e| panic!("{e}"))
 }
 
 fn skin1() -> Material {
-    ground_truth::acceptance_materials()[0]
+    let [skin1, _] = ground_truth::acceptance_materials();
+    skin1
 }
 
 /// The error a model may have on top of the reference's own noise.

@@ -13,7 +13,7 @@ use crate::scene::{
 };
 use crate::shading::{Material, ShadingModel};
 
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Shot {
     /// `None`: the unlit baseline.
     pub shading: Option<ShadingModel>,
@@ -99,9 +99,9 @@ impl StillRenderer {
         shot: &Shot,
     ) -> Result<PreparedFrame, String> {
         let model = &assets.character;
-        if self.material != Some(shot.material) {
+        if self.material.as_ref() != Some(&shot.material) {
             self.renderer.set_material(gpu, &shot.material);
-            self.material = Some(shot.material);
+            self.material = Some(shot.material.clone());
         }
         self.pose.reset(model);
         if !model.animations.is_empty() {

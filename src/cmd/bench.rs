@@ -193,7 +193,7 @@ fn frame(
             props: true,
             clip,
             time: f as f32 / 60.0,
-            ..close
+            ..close.clone()
         };
         let frame = still.frame(&gpu, &assets, &shot)?;
         let mut encoder = gpu.device.create_command_encoder(&Default::default());

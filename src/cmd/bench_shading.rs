@@ -63,7 +63,7 @@ fn prepare(args: &ShadingArgs) -> Result<(References, Option<Value>), String> {
     let dir = ground_truth::default_dir();
     let sets = ground_truth::acceptance_materials()
         .into_iter()
-        .map(|m| ReferenceSet::load(&ground_truth::file_for(&dir, m.name)).map(|s| (m, s)))
+        .map(|m| ReferenceSet::load(&ground_truth::file_for(&dir, &m.name)).map(|s| (m, s)))
         .collect::<Result<Vec<_>, _>>()?;
     let mali = match &args.mali {
         Some(path) => Some(read_cycles(path)?),
@@ -105,7 +105,7 @@ pub fn run(args: ShadingArgs) -> Result<(), String> {
                     .render(&gpu, model, material, &entry.scene, &entry.edges)
                     .map(|rendered| score(&rendered, entry));
                 scores[i].push(SceneScore {
-                    material: material.name,
+                    material: material.name.to_string(),
                     scene: entry.scene,
                     result,
                 });
@@ -116,7 +116,7 @@ pub fn run(args: ShadingArgs) -> Result<(), String> {
     drop(probe);
 
     // Cost (a): this adapter's GPU time of the full-screen pass.
-    let material = sets[0].0;
+    let material = sets[0].0.clone();
     let mut cost = CostScene::new(&gpu, &material)?;
     progress.step("cost scene");
     let coverage = cost.coverage(&gpu);

@@ -24,7 +24,7 @@ pub fn frame_close_up(
             &Shot {
                 shading: Some(ShadingModel::BASELINE),
                 props: false,
-                ..*shot
+                ..shot.clone()
             },
         )?;
         let bg = &image.pixels[0..3];
@@ -54,7 +54,7 @@ pub fn time_models(
     let with = |shading| Shot {
         shading,
         props: false,
-        ..*shot
+        ..shot.clone()
     };
     let mut out = vec![Vec::with_capacity(rounds); models.len()];
     for _ in 0..3 {
@@ -89,7 +89,7 @@ pub fn time_blob_shadows(
     let with = |model| Shot {
         shading: Some(model),
         props: true,
-        ..*shot
+        ..shot.clone()
     };
     let mut out = vec![[Vec::with_capacity(rounds), Vec::with_capacity(rounds)]; models.len()];
     for on in [false, true] {
@@ -126,7 +126,7 @@ pub fn blob_shadow_coverage(
 ) -> Result<f64, String> {
     let shot = Shot {
         props: true,
-        ..*shot
+        ..shot.clone()
     };
     still.renderer.set_blob_shadows(false);
     let off = still.render(gpu, assets, &shot)?;

@@ -33,7 +33,7 @@ pub struct ReferenceArgs {
 /// the bins that carry the light, within a few minutes per material on two cores (the white
 /// coat's near-unit albedo makes its walks ~20× longer than skin1's).
 pub fn default_photons(material: &Material) -> u64 {
-    match material.name {
+    match &*material.name {
         "white-coat" => 400_000,
         _ => 2_000_000,
     }
@@ -74,11 +74,11 @@ pub fn run(args: ReferenceArgs) -> Result<(), String> {
             args.seed
         );
         let start = Instant::now();
-        let set = with_progress(m.name, |progress| {
+        let set = with_progress(&m.name, |progress| {
             ReferenceSet::generate(m, &scenes, photons, args.seed, threads, progress)
         });
         let secs = start.elapsed().as_secs_f64();
-        let path = ground_truth::file_for(&args.out, m.name);
+        let path = ground_truth::file_for(&args.out, &m.name);
         set.save(&path)?;
         print_summary(&set, secs, &path);
     }

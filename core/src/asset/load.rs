@@ -3,19 +3,16 @@
 //! checked against [`limits`](super::limits) before anything is allocated.
 
 use std::borrow::Cow;
-use std::collections::HashMap;
 use std::path::Path;
 
-use super::accessor::{view_bytes, Buffers};
+use super::accessor::Buffers;
 use super::animation::load_animation;
-use super::images::decode_image;
-use super::limits::{
-    MAX_EXTERNAL_FILE_BYTES, MAX_FILE_BYTES, MAX_TOTAL_BUFFER_BYTES, MAX_TOTAL_IMAGE_BYTES,
-};
+use super::limits::{MAX_EXTERNAL_FILE_BYTES, MAX_FILE_BYTES, MAX_TOTAL_BUFFER_BYTES};
+use super::materials::{load_materials, sanitize, Warnings};
 use super::nodes::{load_nodes, load_skin, scene_roots};
 use super::uri::{resolve_uri, UriRef};
 use super::vertices::{load_mesh, Totals};
-use super::{glb, AssetError, Material, Model, TextureImage};
+use super::{glb, AssetError, Model};
 
 /// Loads a .glb or .gltf file; external buffers/images are read from the file's folder.
 pub fn load_gltf(path: &Path) -> Result<Model, AssetError> {
@@ -114,7 +111,7 @@ fn extension_supported(ext: &str) -> bool {
 
 fn load(
     bytes: &[u8],
-    _name: &str,
+    name: &str,
     resolve: &dyn Fn(&str) -> Result<Vec<u8>, String>,
 ) -> Result<Model, String> {
     if bytes.is_empty() {
@@ -127,8 +124,12 @@ fn load(
         (bytes, None)
     };
     let raw = gltf::Gltf::from_slice_without_validation(json).map_err(map_gltf_error)?;
-    let raw = raw.document.into_json();
+    let mut raw = raw.document.into_json();
     precheck(&raw)?;
+    let mut warnings = Warnings::new(name);
+    sanitize(&mut raw, &mut warnings);
+    // Required extensions the engine reads pass; gltf-json's validation refuses the others.
+    raw.extensions_required.retain(|e| !extension_supported(e));
     // Known gltf-json validation panics are prechecked above; the guard is defence in depth
     // (it cannot help where panics abort, hence the precheck).
     let validated = std::panic::catch_unwind(move || gltf::Document::from_json(raw))
@@ -136,10 +137,8 @@ fn load(
     let doc = validated.map_err(map_gltf_error)?;
     let root = doc.as_json();
 
-    for ext in doc.extensions_required() {
-        if !extension_supported(ext) {
-            return Err(format!("requires unsupported extension {ext}"));
-        }
+    if let Some(ext) = doc.extensions_required().next() {
+        return Err(format!("requires unsupported extension {ext}"));
     }
 
     let buffers = load_buffers(&doc, bin, resolve)?;
@@ -189,7 +188,7 @@ fn load(
         }
     }
 
-    let (materials, textures) = load_materials(&doc, &buffers, resolve)?;
+    let (materials, textures) = load_materials(&doc, &buffers, resolve, &mut warnings)?;
 
     let mut animations = Vec::with_capacity(root.animations.len());
     for ai in 0..root.animations.len() {
@@ -197,7 +196,7 @@ fn load(
     }
 
     Ok(Model {
-        source: _name.to_owned(),
+        source: name.to_owned(),
         nodes,
         roots,
         meshes,
@@ -205,6 +204,7 @@ fn load(
         materials,
         textures,
         animations,
+        warnings: warnings.list,
     })
 }
 
@@ -261,122 +261,4 @@ fn load_buffers<'a>(
         data.push(bytes);
     }
     Ok(Buffers { data })
-}
-
-/// The material `extras` entry declaring the base-colour texture's alpha a skin mask
-/// (`{"dermisSkinMask": "baseColorAlpha"}`; the project's character has it, see `xtask assets`).
-pub const SKIN_MASK_EXTRAS: (&str, &str) = ("dermisSkinMask", "baseColorAlpha");
-
-/// Whether material `mi` declares its base-colour alpha a skin mask.
-fn declares_skin_mask(mat: &gltf::Material<'_>, mi: usize) -> bool {
-    let Some(raw) = mat.extras() else {
-        return false;
-    };
-    let (key, value) = SKIN_MASK_EXTRAS;
-    let extras: serde_json::Value = serde_json::from_str(raw.get()).unwrap_or_default();
-    match extras.get(key) {
-        None => false,
-        Some(v) if v.as_str() == Some(value) => true,
-        Some(v) => {
-            log::warn!("material {mi}: extras.{key} = {v} is not \"{value}\"; treated as skin");
-            false
-        }
-    }
-}
-
-/// Makes every texel opaque: the engine draws opaque, and the character shader reads the
-/// base colour's alpha as the skin mask, so a texture without a declared mask is all skin.
-fn opaque(mut tex: TextureImage) -> TextureImage {
-    for px in tex.rgba8.chunks_exact_mut(4) {
-        px[3] = 255;
-    }
-    tex
-}
-
-fn load_materials(
-    doc: &gltf::Document,
-    buffers: &Buffers<'_>,
-    resolve: &dyn Fn(&str) -> Result<Vec<u8>, String>,
-) -> Result<(Vec<Material>, Vec<TextureImage>), String> {
-    let root = doc.as_json();
-    let mut materials = Vec::with_capacity(root.materials.len());
-    let mut textures: Vec<TextureImage> = Vec::new();
-    // (image, alpha kept as the skin mask) -> texture slot.
-    let mut by_image: HashMap<(usize, bool), usize> = HashMap::new();
-    let mut image_bytes: u64 = 0;
-    for mat in doc.materials() {
-        let mi = mat.index().unwrap_or(0);
-        let pbr = mat.pbr_metallic_roughness();
-        let factor = pbr.base_color_factor();
-        if factor.iter().any(|f| !f.is_finite()) {
-            return Err(format!("material {mi}: NaN/Inf baseColorFactor"));
-        }
-        let mut base_color_texture = None;
-        if let Some(info) = pbr.base_color_texture() {
-            if info.tex_coord() != 0 {
-                log::warn!(
-                    "material {mi}: base colour uses TEXCOORD_{}; TEXCOORD_0 is used",
-                    info.tex_coord()
-                );
-            }
-            let ti = info.texture().index();
-            let ii = root
-                .textures
-                .get(ti)
-                .map(|t| t.source.value())
-                .filter(|&ii| ii < root.images.len())
-                .ok_or_else(|| format!("material {mi}: texture {ti} has no valid image source"))?;
-            let masked = declares_skin_mask(&mat, mi);
-            let slot = match by_image.get(&(ii, masked)) {
-                Some(&s) => s,
-                None => {
-                    let tex = load_image(doc, buffers, resolve, ii)?;
-                    let tex = if masked { tex } else { opaque(tex) };
-                    image_bytes = image_bytes.saturating_add(tex.rgba8.len() as u64);
-                    if image_bytes > MAX_TOTAL_IMAGE_BYTES {
-                        return Err(format!(
-                            "decoded images above the limit {MAX_TOTAL_IMAGE_BYTES} bytes"
-                        ));
-                    }
-                    textures.push(tex);
-                    by_image.insert((ii, masked), textures.len() - 1);
-                    textures.len() - 1
-                }
-            };
-            base_color_texture = Some(slot);
-        }
-        materials.push(Material {
-            name: mat.name().map(str::to_owned),
-            base_color_factor: factor,
-            base_color_texture,
-            normal_texture: None,
-        });
-    }
-    Ok((materials, textures))
-}
-
-fn load_image(
-    doc: &gltf::Document,
-    buffers: &Buffers<'_>,
-    resolve: &dyn Fn(&str) -> Result<Vec<u8>, String>,
-    index: usize,
-) -> Result<TextureImage, String> {
-    let what = format!("image {index}");
-    let image = doc
-        .images()
-        .nth(index)
-        .ok_or_else(|| format!("missing {what}"))?;
-    match image.source() {
-        gltf::image::Source::View { view, .. } => {
-            let bytes = view_bytes(buffers, &view).map_err(|e| format!("{what}: {e}"))?;
-            decode_image(bytes, true, &what)
-        }
-        gltf::image::Source::Uri { uri, .. } => {
-            let bytes = match resolve_uri(uri).map_err(|e| format!("{what}: {e}"))? {
-                UriRef::Data(d) => d,
-                UriRef::Relative(p) => resolve(&p).map_err(|e| format!("{what}: {e}"))?,
-            };
-            decode_image(&bytes, true, &what)
-        }
-    }
 }

@@ -141,12 +141,14 @@ pub fn load_with(assets_dir: &Path, maps: Maps) -> Result<Model, AssetError> {
         }],
         materials: vec![crate::asset::Material {
             name: Some("skin".into()),
-            base_color_factor: [1.0; 4],
             base_color_texture: maps.albedo.then_some(0),
+            metallic_factor: 0.0,
             normal_texture: maps.normal.then(|| textures.len() - 1),
+            ..crate::asset::Material::default()
         }],
         textures,
         animations: Vec::new(),
+        warnings: Vec::new(),
     })
 }
 
