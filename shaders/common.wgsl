@@ -59,8 +59,11 @@ struct Surface {
     // Where it was tested in the shadow map: uv, depth, and w 1 inside the map (0: outside,
     // or no map this frame).
     shadow_coord: vec4<f32>,
-    // Base colour (texture × factor), linear.
+    // Base colour (texture × factor), linear; a pigmented skin's albedo per texel.
     albedo: vec3<f32>,
+    // The albedo is the skin's pigment (its texel's albedo): the skin models render a medium
+    // whose diffuse reflectance is `albedo`; otherwise the medium's own.
+    pigmented: bool,
     // Material thickness through this point (m).
     thickness: f32,
     // Radius of curvature of the surface here (m); FLAT_RADIUS_M where unknown.
@@ -134,6 +137,7 @@ fn make_surface(pos: vec3<f32>, normal: vec3<f32>, tangent: vec4<f32>, albedo: v
     s.light_dist = max(length(to_light), 1e-3);
     s.l = safe_normalize(to_light, s.n);
     s.albedo = albedo;
+    s.pigmented = false;
     s.thickness = max(thickness, 0.0);
     s.shadow_coord = entry_shadow_coord(pos, s.n, s.l, s.thickness);
     s.visibility = light_visible_coord(s.shadow_coord);
@@ -145,20 +149,6 @@ fn make_surface(pos: vec3<f32>, normal: vec3<f32>, tangent: vec4<f32>, albedo: v
 // Irradiance at normal incidence from the point light (inverse square).
 fn irradiance(s: Surface) -> vec3<f32> {
     return s.light / (s.light_dist * s.light_dist);
-}
-
-// Cloth (and whatever else is not skin: hair, eyes), the same under every shading model: a
-// wrapped Lambert lobe (light wraps past the terminator as it does through fibres; the
-// (1 + w)² keeps its integral that of Lambert) brightened toward grazing views by a sheen
-// tinted by the fibres' colour (velvet-like), on the textured albedo.
-const CLOTH_WRAP: f32 = 0.3;
-const CLOTH_SHEEN: f32 = 0.5;
-
-fn cloth_radiance(s: Surface) -> vec3<f32> {
-    let wrapped = max(dot(s.n, s.l) + CLOTH_WRAP, 0.0) / ((1.0 + CLOTH_WRAP) * (1.0 + CLOTH_WRAP));
-    let g = 1.0 - max(dot(s.n, s.v), 0.0);
-    let brdf = INV_PI + CLOTH_SHEEN * g * g * g;
-    return s.albedo * (frame.ambient + irradiance(s) * wrapped * brdf);
 }
 
 // Narkowicz's fit of the ACES filmic curve.

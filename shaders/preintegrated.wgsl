@@ -84,12 +84,14 @@ fn shade(s: Surface) -> vec3<f32> {
     let slab = lut_row(slab_u(path), LUT_CURVATURE_ROWS + 1.0).rgb;
     let ball = lut_row(slab_u(2.0 * rho_mm * back), LUT_CURVATURE_ROWS + 1.0).rgb;
     let through = back * entry * max(slab - ball, vec3<f32>(0.0));
-    let ambient = PI * frame.ambient * model.albedo;
+    let ambient = PI * frame.ambient * model.uniform_albedo;
     // The light before its shadow test (s.light carries the hard test), so the response
     // can take the penumbra's per-channel visibility instead; translucency keeps the hard
     // test, made where it enters on the far side.
     let full = select(s.light, frame.light_intensity * frame.light_color, frame.shadow_drawn != 0u);
     let e_full = full / (s.light_dist * s.light_dist);
     let lit = penumbra(s, s.visibility);
-    return exit * (ambient + e_full * response * lit + irradiance(s) * through);
+    // A pigmented texel: its factor in and out (one pass sees only this texel).
+    let t = sss_pigment(s);
+    return exit * t * t * (ambient + e_full * response * lit + irradiance(s) * through);
 }

@@ -9,7 +9,8 @@
 // own size in mm (written by the character pass). A sample that is off screen, not skin, or
 // at another depth (its pixel size differs by more than `depth_tolerance`) counts as the
 // centre pixel: energy stays where the surface is. Output: radiance that stayed + exit ·
-// exitance, then exposure, tone mapping and encoding as every other pass.
+// exitance (the exit factor per channel, from its own target: the pigment's way out), then
+// exposure, tone mapping and encoding as every other pass.
 // Driver: core/src/render/passes/subsurface.rs.
 #import common
 
@@ -41,6 +42,9 @@ struct KernelUniform {
 @group(1) @binding(1) var colour_tex: texture_2d<f32>;
 @group(1) @binding(2) var spread_tex: texture_2d<f32>;
 @group(1) @binding(3) var spread_sampler: sampler;
+// The exit factor per channel (pigment included): what turns the gathered exitance into
+// radiance toward the viewer.
+@group(1) @binding(4) var exit_tex: texture_2d<f32>;
 
 struct VertexOut {
     @builtin(position) clip: vec4<f32>,
@@ -116,5 +120,5 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
         }
         m = m + ring.mass * sum / f32(angles);
     }
-    return finish(colour.rgb + colour.a * m);
+    return finish(colour.rgb + textureLoad(exit_tex, p, 0).rgb * m);
 }

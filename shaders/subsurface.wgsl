@@ -30,6 +30,10 @@ struct SubsurfaceUniform {
     // 1 for models with translucency (their composition sets TRANSLUCENCY; read by the f64
     // twin).
     translucent: f32,
+    // The medium's diffuse reflectance under uniform light as the model renders it: what
+    // ambient light reflects with, and what a pigment's albedo is relative to.
+    uniform_albedo: vec3<f32>,
+    _pad0: f32,
     // rgb: q(μ_k) = R(μ_k)/R(1), μ_k = (k/(OBLIQUE_NODES − 1))² (tables are linear in √μ):
     // oblique incidence relative to normal, per channel.
     oblique: array<vec4<f32>, OBLIQUE_NODES>,
@@ -48,8 +52,18 @@ struct SubsurfaceUniform {
 struct Split {
     local: vec3<f32>,
     spread: vec3<f32>,
-    exit: f32,
+    exit: vec3<f32>,
 };
+
+// A pigmented texel's factor T per channel (1 without a pigment): a thin absorbing layer over
+// the medium, crossed once on the way in and once on the way out, T² = A / the medium's own
+// reflectance under uniform light, so uniform light returns the texel's albedo A.
+fn sss_pigment(s: Surface) -> vec3<f32> {
+    if (!s.pigmented) {
+        return vec3<f32>(1.0);
+    }
+    return sqrt(max(s.albedo, vec3<f32>(0.0)) / max(model.uniform_albedo, vec3<f32>(1e-6)));
+}
 
 fn sss_oblique(mu: f32) -> vec3<f32> {
     let x = sqrt(clamp(mu, 0.0, 1.0)) * f32(OBLIQUE_NODES - 1u);
@@ -146,12 +160,18 @@ fn sss_translucency(s: Surface) -> vec3<f32> {
 #endif
 }
 
+// The medium at a pixel: radiance that stays (ambient, translucency), irradiance to spread
+// and the exit factor; the pigment taken in with the spread irradiance and out with what
+// leaves (what stays crosses this texel's layer both ways).
 fn sss_split(s: Surface) -> Split {
     var out: Split;
-    out.exit = sss_exit(s);
-    out.spread = sss_spread(s);
-    // Ambient: uniform radiance L_a gives irradiance π L_a, reflected with the medium's albedo.
-    out.local = out.exit * (PI * frame.ambient * model.albedo + sss_translucency(s));
+    let t = sss_pigment(s);
+    let exit = sss_exit(s);
+    out.exit = exit * t;
+    out.spread = sss_spread(s) * t;
+    // Ambient: uniform radiance L_a gives irradiance π L_a, reflected with the medium's
+    // reflectance under uniform light.
+    out.local = exit * t * t * (PI * frame.ambient * model.uniform_albedo + sss_translucency(s));
     return out;
 }
 

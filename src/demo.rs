@@ -9,8 +9,8 @@ use dermis_core::render::{
     FrameOutput, FrameWork, Gpu, PassCtx, PreparedFrame, RenderStats, Renderer,
 };
 use dermis_core::scene::{
-    posed_bounds, showroom, DrawSet, FramePacket, FrameView, Light, PropInstance, SceneAssets,
-    SubjectPose, CHARACTER, EXPOSURE,
+    posed_bounds, showroom, DrawSet, FramePacket, FrameView, Light, PropInstance, Roles,
+    SceneAssets, SubjectPose, CHARACTER, EXPOSURE,
 };
 use dermis_core::shading::{material::PRESETS, Material, ShadingModel};
 use glam::{Mat4, Quat, Vec3};
@@ -76,12 +76,11 @@ impl Demo {
 
     /// Uploads everything to the GPU (once).
     pub fn upload(&self, gpu: &Gpu, renderer: &mut Renderer) -> Result<(), String> {
-        renderer.load_scene(
-            gpu,
-            &self.assets.character,
-            &self.assets.props,
-            &self.material,
-        )
+        let roles = Roles {
+            optics: self.material.clone(),
+            ..self.assets.roles.clone()
+        };
+        renderer.load_scene(gpu, (&self.assets.character, &roles), &self.assets.props)
     }
 
     pub fn clip_count(&self) -> usize {

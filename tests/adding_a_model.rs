@@ -123,6 +123,11 @@ const EXCEPTIONS: &[(&str, &str, &str)] = &[
         "the Game Loop scenarios 1 and 3 run the paper's OSS by the published protocol",
     ),
     (
+        "core/src/shader/consts.rs",
+        "preintegrated",
+        "the shaders' copy of the LUT's layout (rows, width, slab span), written once in its file",
+    ),
+    (
         "measure/src/lut.rs",
         "preintegrated",
         "the LUT model's offline bake (Monte Carlo spheres; not linked into the APK)",

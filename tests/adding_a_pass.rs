@@ -16,7 +16,7 @@ use dermis_core::render::{Gpu, Offscreen, PipelineSet, RenderStats, Renderer, OF
 use dermis_core::scene::{
     key_light, showroom, DrawSet, FramePacket, FrameView, SceneAssets, SubjectPose, EXPOSURE,
 };
-use dermis_core::shading::{material::SKIN1, ShadingModel};
+use dermis_core::shading::ShadingModel;
 use glam::{Mat4, Vec3};
 
 fn root() -> &'static Path {
@@ -100,7 +100,8 @@ impl Scene {
     fn renderer(&self, set: &PipelineSet) -> Renderer {
         let gpu = &self.gpu;
         let mut r = Renderer::with_pipelines(gpu, OFFSCREEN_FORMAT, set);
-        r.load_scene(gpu, &self.assets.character, &self.assets.props, &SKIN1)
+        let assets = &self.assets;
+        r.load_scene(gpu, (&assets.character, &assets.roles), &assets.props)
             .unwrap();
         r.enable_blob_shadows(gpu);
         r.enable_ui(gpu);

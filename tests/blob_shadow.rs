@@ -273,13 +273,8 @@ fn blob_pipelines_exist_only_when_something_casts() {
     };
     for (set, built) in [(PipelineSet::game(), 2), (one_pass, 1)] {
         let mut r = Renderer::with_pipelines(&gpu, OFFSCREEN_FORMAT, &set);
-        r.load_scene(
-            &gpu,
-            &assets.character,
-            &assets.props,
-            &dermis_core::shading::material::SKIN1,
-        )
-        .unwrap();
+        r.load_scene(&gpu, (&assets.character, &assets.roles), &assets.props)
+            .unwrap();
         let before = pipelines();
         assert!(r.enable_blob_shadows(&gpu) && r.blob_shadows());
         assert_eq!(pipelines() - before, built, "{set:?}");

@@ -5,6 +5,7 @@ use std::path::Path;
 
 use dermis_core::app::{GameFrame, GameGpu, Session};
 use dermis_core::game::Screen;
+use dermis_core::render::passes::character::standard_keys;
 use dermis_core::render::{
     Clock, FrameDriver, Gpu, LiveObjects, Offscreen, Output, PipelineSet, OFFSCREEN_FORMAT,
 };
@@ -85,14 +86,20 @@ fn the_game_builds_exactly_the_pipelines_it_can_reach() {
     // menu reaches screen-space models — the props' two-target variant and the subsurface
     // pass; and the blob shadows' two (one per target layout: the props cast); the key
     // light's shadow map's depth-only caster (the character casts) and — because the menu
-    // reaches a model with the penumbra effect — the penumbra map's two passes.
+    // reaches a model with the penumbra effect — the penumbra map's two passes; and for each
+    // standard material variant of the character (its cloth), one per target layout.
     assert!(needed.needs_subsurface_pass() && gg.renderer.has_subsurface_pass());
     assert!(gg.renderer.has_shadow_map());
     let penumbra = needed.models.iter().any(|m| m.effects().penumbra);
     assert!(penumbra);
+    let standard = standard_keys(&assets.character, &assets.roles).len() as isize;
+    assert!(
+        standard >= 1,
+        "the character's cloth is a standard material"
+    );
     assert_eq!(
         after.render_pipelines - before.render_pipelines,
-        needed.models.len() as isize + 6 + 1 + 2
+        needed.models.len() as isize + 6 + 1 + 2 + 2 * standard
     );
 }
 
@@ -153,7 +160,7 @@ fn each_model_composes_exactly_the_effects_it_declares() {
             "{model}: translucency"
         );
         assert_eq!(
-            src.contains("fn fs_main(in: VertexOut) -> SplitOut"),
+            src.contains("-> SplitOut {"),
             e.screen_space,
             "{model}: screen-space split"
         );

@@ -11,7 +11,7 @@ use dermis_core::scene::{
     key_light, showroom, DrawSet, FramePacket, FrameView, PropInstance, PropKind, SceneAssets,
     EXPOSURE,
 };
-use dermis_core::shading::{material::SKIN1, ShadingModel};
+use dermis_core::shading::ShadingModel;
 use glam::{Mat4, Vec3};
 
 const W: u32 = 256;
@@ -30,7 +30,7 @@ impl Scene {
         let assets = SceneAssets::load(&root, None).unwrap_or_else(|e| panic!("{e}"));
         let mut renderer = Renderer::new(&gpu, OFFSCREEN_FORMAT);
         renderer
-            .load_scene(&gpu, &assets.character, &assets.props, &SKIN1)
+            .load_scene(&gpu, (&assets.character, &assets.roles), &assets.props)
             .unwrap_or_else(|e| panic!("{e}"));
         renderer.resize(&gpu, (W, H));
         let target = Offscreen::new(&gpu, W, H);

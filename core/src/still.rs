@@ -67,12 +67,7 @@ impl StillRenderer {
         format: wgpu::TextureFormat,
     ) -> Result<Self, String> {
         let mut renderer = Renderer::new(gpu, format);
-        renderer.load_scene(
-            gpu,
-            &assets.character,
-            &assets.props,
-            &crate::shading::material::SKIN1,
-        )?;
+        renderer.load_scene(gpu, (&assets.character, &assets.roles), &assets.props)?;
         renderer.resize(gpu, (width, height));
         Ok(Self {
             renderer,

@@ -21,7 +21,7 @@ use dermis_core::anim::Pose;
 use dermis_core::asset::shapes::{plane_model, sphere_model};
 use dermis_core::asset::Model;
 use dermis_core::render::{Gpu, Offscreen, Renderer};
-use dermis_core::scene::{DrawSet, FramePacket, FrameView, Light, SubjectPose};
+use dermis_core::scene::{DrawSet, FramePacket, FrameView, Light, Roles, SubjectPose};
 use dermis_core::shading::{fresnel, subsurface, units, Material, ShadingModel};
 
 use crate::ground_truth::Scene;
@@ -86,7 +86,8 @@ impl SceneRenderer {
                 } => plane_model(mm(half_mm), mm(thickness_mm)),
                 Geometry::Sphere { radius_mm } => sphere_model(mm(radius_mm), mm(2.0 * radius_mm)),
             };
-            self.renderer.load_character(gpu, &model, material)?;
+            self.renderer
+                .load_character(gpu, &model, &Roles::medium(material))?;
             let mut pose = Pose::new(&model);
             pose.update_world(&model);
             self.loaded = Some((geometry, model, pose));

@@ -20,7 +20,7 @@ use dermis_core::anim::Pose;
 use dermis_core::asset::shapes::plane_model;
 use dermis_core::asset::Model;
 use dermis_core::render::{Gpu, Offscreen, PassCtx, PassTimer, Renderer, OFFSCREEN_FORMAT};
-use dermis_core::scene::{DrawSet, FramePacket, FrameView, Light, SubjectPose};
+use dermis_core::scene::{DrawSet, FramePacket, FrameView, Light, Roles, SubjectPose};
 use dermis_core::shading::{subsurface, Material, ShadingModel};
 use dermis_measure::ground_truth::metric::score;
 use dermis_measure::ground_truth::{self, ReferenceSet};
@@ -180,7 +180,7 @@ impl CostScene {
         let half_h = half_w * h as f32 / w as f32;
         // 5 mm thick (translucency terms see a thin part), reaching well past the view.
         let model = plane_model(2.0 * half_w, 0.005);
-        renderer.load_character(gpu, &model, material)?;
+        renderer.load_character(gpu, &model, &Roles::medium(material))?;
         renderer.resize(gpu, (w, h));
         let mut pose = Pose::new(&model);
         pose.update_world(&model);

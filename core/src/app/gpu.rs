@@ -11,8 +11,7 @@ use std::sync::Arc;
 use crate::anim::Pose;
 use crate::asset::Model;
 use crate::render::{Gpu, PassCtx, PipelineSet, PreparedFrame, RenderStats, Renderer};
-use crate::scene::{FramePacket, HeadLoad, SceneAssets};
-use crate::shading::material::SKIN1;
+use crate::scene::{FramePacket, HeadLoad, Roles, SceneAssets};
 use crate::shading::ShadingModel;
 
 pub struct GameGpu {
@@ -50,8 +49,7 @@ impl GameGpu {
             gpu,
             format,
             (&set, first),
-            (&assets.character, &assets.props),
-            &SKIN1,
+            (&assets.character, &assets.roles, &assets.props),
         )?;
         // Contact shadows under the runner and the props, so nothing floats.
         renderer.enable_blob_shadows(gpu);
@@ -92,7 +90,7 @@ impl GameGpu {
         let Some(model) = load.wait().cloned() else {
             return;
         };
-        match self.renderer.add_subject(gpu, &model) {
+        match self.renderer.add_subject(gpu, &model, &Roles::of(&model)) {
             Ok(slot) => {
                 let mut pose = Pose::new(&model);
                 pose.update_world(&model);

@@ -13,7 +13,7 @@ use crate::anim::Pose;
 use crate::asset::tangents::generate_tangents;
 use crate::asset::{load_gltf, Aabb, AssetError, Model, Node, Skin, TextureImage, Transform};
 use crate::render::{Gpu, Offscreen, Renderer, RgbaImage};
-use crate::scene::{DrawSet, FramePacket, FrameView, Light, SubjectPose, EXPOSURE};
+use crate::scene::{DrawSet, FramePacket, FrameView, Light, Roles, SubjectPose, EXPOSURE};
 use crate::shading::{Material, ShadingModel};
 
 /// The head's folder under the assets root.
@@ -247,7 +247,19 @@ impl HeadRenderer {
         if hdr {
             renderer.set_clear(wgpu::Color::BLACK);
         }
-        renderer.load_character(gpu, model, material)?;
+        // The albedo map is the skin's pigment; without it the head is the medium itself.
+        let textured = model
+            .materials
+            .iter()
+            .any(|m| m.base_color_texture.is_some());
+        let roles = match textured {
+            true => Roles {
+                optics: material.clone(),
+                ..Roles::of(model)
+            },
+            false => Roles::medium(material),
+        };
+        renderer.load_character(gpu, model, &roles)?;
         renderer.resize(gpu, (width, height));
         // Posed once, in its rest pose: a frame that poses it and draws nothing.
         let mut pose = Pose::new(model);

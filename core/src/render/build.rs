@@ -15,8 +15,10 @@ use super::skinned::SkinnedGpu;
 use super::{FrameUniform, Gpu};
 use crate::asset::Model;
 use crate::render::passes::blobs::Casters;
+use crate::render::passes::character::standard_keys;
 use crate::scene::PropKind;
-use crate::shading::{Material, ShadingModel};
+use crate::scene::Roles;
+use crate::shading::ShadingModel;
 
 /// The textures' sampler: trilinear, repeating.
 fn trilinear_sampler(device: &wgpu::Device) -> wgpu::Sampler {
@@ -69,6 +71,7 @@ fn resources(
         frame_group,
         models,
         subjects: Subjects::default(),
+        standard: Vec::new(),
         props: Vec::new(),
         casters: Casters::default(),
         light_maps,
@@ -116,8 +119,7 @@ impl Renderer {
         gpu: &Gpu,
         format: wgpu::TextureFormat,
         (set, first): (&PipelineSet, ShadingModel),
-        (character, props): (&Model, &[(PropKind, Model)]),
-        material: &Material,
+        (character, roles, props): (&Model, &Roles, &[(PropKind, Model)]),
     ) -> Result<Self, String> {
         let (device, queue) = (&gpu.device, &gpu.queue);
         let layouts = Layouts::new(device);
@@ -125,6 +127,7 @@ impl Renderer {
         // The character casts: its light maps exist from the start.
         let penumbra = set.models.iter().any(|m| m.effects().penumbra);
         let light_maps = LightMaps::new(device, SHADOW_MAP_SIZE, penumbra);
+        let standard = standard_keys(character, roles);
         let ctx = BuildCtx {
             device,
             queue,
@@ -136,6 +139,7 @@ impl Renderer {
             props: !props.is_empty(),
             blobs: false,
             ui: false,
+            standard: &standard,
         };
         let compile = || {
             let pipelines = CharacterPipelines::new(device, &layouts, format, set, Some(first));
@@ -145,7 +149,7 @@ impl Renderer {
             let compiling = std::thread::Builder::new()
                 .name("dermis-compile".into())
                 .spawn_scoped(s, compile);
-            let subject = SkinnedGpu::new(device, queue, &layouts, &sampler, character);
+            let subject = SkinnedGpu::new(device, queue, (&layouts, &sampler), character, roles);
             let prop_gpus: Vec<PropGpu> = props
                 .iter()
                 .map(|(kind, model)| PropGpu::new(device, queue, &layouts, &sampler, *kind, model))
@@ -166,7 +170,7 @@ impl Renderer {
         for ((kind, model), prop) in props.iter().zip(prop_gpus) {
             renderer.install_prop(*kind, model, prop);
         }
-        renderer.install_character(gpu, character, subject?, material);
+        renderer.install_character(gpu, (character, roles), subject?);
         Ok(renderer)
     }
 

@@ -15,6 +15,7 @@ mod frame_uniform;
 mod gpu;
 mod layouts;
 mod light_maps;
+mod material_gpu;
 mod mesh;
 mod model_gpu;
 mod offscreen;

@@ -86,14 +86,14 @@ impl CharacterPipelines {
     /// has finished; blocks for `need`'s (the pipeline about to draw) or, with `all`, for
     /// every one still pending. A builder that died leaves its pipelines unbuilt (logged;
     /// their models draw nothing).
-    pub fn receive(&mut self, table: &mut ModelTable, need: Option<PipelineKey>, all: bool) {
+    pub fn receive(&mut self, table: &mut ModelTable, need: &[PipelineKey], all: bool) {
         for (key, pipeline) in self.ready.drain(..) {
             match key {
                 Some(key) => table.install(key, pipeline),
                 None => table.install_unlit(pipeline),
             }
         }
-        let blocking = |pending: &[PipelineKey]| all || need.is_some_and(|k| pending.contains(&k));
+        let blocking = |pending: &[PipelineKey]| all || need.iter().any(|k| pending.contains(k));
         if blocking(&self.pending) {
             self.start_builder();
         }
@@ -146,6 +146,11 @@ impl CharacterPipelines {
         self.arrivals = Some(rx);
     }
 
+    /// The pipeline layout every character pipeline shares (frame, model, palette, material).
+    pub fn layout(&self) -> &wgpu::PipelineLayout {
+        &self.layout
+    }
+
     /// Whether some requested pipeline is still being built.
     pub fn loading(&self) -> bool {
         !self.pending.is_empty()
@@ -170,7 +175,7 @@ impl CharacterPipelines {
     }
 }
 
-/// The colour targets of a pipeline: the output format, or the two linear targets of a
+/// The colour targets of a pipeline: the output format, or the three linear targets of a
 /// frame with the subsurface pass.
 pub fn targets(format: wgpu::TextureFormat, split: bool) -> Vec<Option<wgpu::ColorTargetState>> {
     let target = |format| {
@@ -181,7 +186,11 @@ pub fn targets(format: wgpu::TextureFormat, split: bool) -> Vec<Option<wgpu::Col
         })
     };
     if split {
-        vec![target(SPLIT_FORMAT), target(SPLIT_FORMAT)]
+        vec![
+            target(SPLIT_FORMAT),
+            target(SPLIT_FORMAT),
+            target(SPLIT_FORMAT),
+        ]
     } else {
         vec![target(format)]
     }
@@ -203,6 +212,7 @@ impl CharacterPipelines {
                 Some(&layouts.frame),
                 Some(&layouts.model),
                 Some(&layouts.skinned),
+                Some(&layouts.material),
             ],
             immediate_size: 0,
         });
@@ -291,6 +301,32 @@ pub fn pipeline(
     buffers: &[wgpu::VertexBufferLayout<'_>],
     label: &str,
 ) -> wgpu::RenderPipeline {
+    let opaque = Surfaces {
+        cull: Some(wgpu::Face::Back),
+        depth_write: true,
+    };
+    pipeline_with(device, layout, module, targets, buffers, label, opaque)
+}
+
+/// Which faces a pipeline draws and whether it writes depth.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Surfaces {
+    /// The face culled (`None`: both drawn).
+    pub cull: Option<wgpu::Face>,
+    pub depth_write: bool,
+}
+
+/// [`pipeline`], with the faces drawn and depth writes as `surfaces` says (double-sided and
+/// blended materials).
+pub fn pipeline_with(
+    device: &wgpu::Device,
+    layout: &wgpu::PipelineLayout,
+    module: &wgpu::ShaderModule,
+    targets: &[Option<wgpu::ColorTargetState>],
+    buffers: &[wgpu::VertexBufferLayout<'_>],
+    label: &str,
+    surfaces: Surfaces,
+) -> wgpu::RenderPipeline {
     let buffers: Vec<Option<wgpu::VertexBufferLayout<'_>>> =
         buffers.iter().cloned().map(Some).collect();
     device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
@@ -305,10 +341,13 @@ pub fn pipeline(
         primitive: wgpu::PrimitiveState {
             topology: wgpu::PrimitiveTopology::TriangleList,
             front_face: wgpu::FrontFace::Ccw,
-            cull_mode: Some(wgpu::Face::Back),
+            cull_mode: surfaces.cull,
             ..Default::default()
         },
-        depth_stencil: Some(depth_state(true, wgpu::CompareFunction::Less)),
+        depth_stencil: Some(depth_state(
+            surfaces.depth_write,
+            wgpu::CompareFunction::Less,
+        )),
         multisample: multisample(MSAA_SAMPLES),
         fragment: Some(wgpu::FragmentState {
             module,

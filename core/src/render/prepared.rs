@@ -2,7 +2,6 @@
 //! `Renderer::prepare`) and what its passes record into ([`PassCtx`]). Encoding reads only
 //! these two: no cell, no lock, no call back into whoever made the frame.
 
-use super::model_gpu::PipelineKey;
 use super::passes::PASS_COUNT;
 use super::shadow_view::ShadowView;
 use super::targets::Targets;
@@ -20,13 +19,13 @@ pub struct PassFrame {
     pub steps: u32,
 }
 
-/// The subject drawn this frame and the pipeline that draws it.
+/// The subject drawn this frame and the shading model its skin is drawn with.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct SubjectDraw {
     /// Its renderer slot (0: the character).
     pub slot: usize,
-    /// Its shading model's pipeline (model, normal-mapped); `None`: the unlit baseline.
-    pub pipeline: Option<PipelineKey>,
+    /// Its skin's shading model; `None`: the unlit baseline.
+    pub shading: Option<ShadingModel>,
 }
 
 /// Everything the passes need to record one frame, worked out once by `Renderer::prepare`.

@@ -3,14 +3,13 @@
 //! props pass draws them instanced with the plain default-lit shader).
 
 use glam::{Mat3, Mat4, Vec3};
-use wgpu::util::DeviceExt;
 
 use super::layouts::Layouts;
+use super::material_gpu::{MaterialGpu, ModelTextures};
 use super::mesh::GpuMesh;
-use super::texture;
 use crate::asset::{Model, Primitive};
 use crate::camera::Frustum;
-use crate::scene::PropKind;
+use crate::scene::{PropKind, Role};
 
 struct Part {
     mesh: GpuMesh,
@@ -38,12 +37,7 @@ impl PropGpu {
         kind: PropKind,
         model: &Model,
     ) -> Self {
-        let white = texture::solid(device, queue, [255, 255, 255, 255], true);
-        let textures: Vec<wgpu::TextureView> = model
-            .textures
-            .iter()
-            .map(|t| texture::upload(device, queue, t, kind.file()))
-            .collect();
+        let textures = ModelTextures::upload(device, queue, model);
         let mut parts = Vec::new();
         let mut triangles = 0;
         let (mut lo, mut hi) = (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN));
@@ -52,35 +46,15 @@ impl PropGpu {
             let Some(mesh) = node.mesh else { continue };
             for prim in &model.meshes[mesh].primitives {
                 let baked = bake(prim, worlds[node_index]);
-                let material = prim.material.map(|m| &model.materials[m]);
-                let factor = material.map(|m| m.base_color_factor).unwrap_or([1.0; 4]);
-                let view = material
-                    .and_then(|m| m.base_color_texture)
-                    .and_then(|t| textures.get(t))
-                    .unwrap_or(&white);
-                let factor_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some("prop factor"),
-                    contents: bytemuck::cast_slice(&factor),
-                    usage: wgpu::BufferUsages::UNIFORM,
-                });
-                let material = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                    label: Some("prop material"),
-                    layout: &layouts.prop_material,
-                    entries: &[
-                        wgpu::BindGroupEntry {
-                            binding: 0,
-                            resource: wgpu::BindingResource::TextureView(view),
-                        },
-                        wgpu::BindGroupEntry {
-                            binding: 1,
-                            resource: wgpu::BindingResource::Sampler(sampler),
-                        },
-                        wgpu::BindGroupEntry {
-                            binding: 2,
-                            resource: factor_buffer.as_entire_binding(),
-                        },
-                    ],
-                });
+                let material = prim.material.and_then(|m| model.materials.get(m));
+                let material = MaterialGpu::new(
+                    device,
+                    (layouts, sampler),
+                    &textures,
+                    material,
+                    Role::Standard,
+                )
+                .group;
                 triangles += baked.indices.len() as u32 / 3;
                 for v in &baked.vertices {
                     lo = lo.min(Vec3::from(v.position));

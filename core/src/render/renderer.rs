@@ -12,6 +12,7 @@ use glam::Vec3;
 use super::light_maps::{LightMaps, Occluder, SHADOW_MAP_SIZE};
 use super::model_gpu::PipelineKey;
 use super::offscreen::Offscreen;
+use super::passes::character::standard_keys;
 use super::passes::resolve::{self, Timed};
 use super::passes::subsurface::SplitTargets;
 use super::passes::{BuildCtx, Passes, Stage};
@@ -23,7 +24,7 @@ use super::shadow_view::ShadowView;
 use super::skinned::SkinnedGpu;
 use super::{FrameUniform, Gpu, OutputMode};
 use crate::asset::Model;
-use crate::scene::{FramePacket, PropKind, CHARACTER};
+use crate::scene::{FramePacket, PropKind, Roles, CHARACTER};
 use crate::shading::{Material, ShadingModel};
 
 /// How much a pose may reach beyond the bind pose's bounding sphere (arms, a jump's tuck).
@@ -65,6 +66,7 @@ pub(super) fn build_ctx<'a>(
         props: !res.props.is_empty(),
         blobs: wants.blobs && res.casters.any(),
         ui: wants.ui,
+        standard: &res.standard,
     }
 }
 
@@ -108,17 +110,7 @@ impl Renderer {
         let queue = &gpu.queue;
         let draw = packet.draw;
         self.res.subjects.select(packet.slot);
-        let mapped = self
-            .res
-            .subjects
-            .active()
-            .is_some_and(|s| s.gpu.normal_mapped);
-        let key = |m: ShadingModel| (m, mapped);
-        self.pipelines.receive(
-            &mut self.res.models,
-            draw.shading.filter(|_| draw.character).map(key),
-            packet.settled,
-        );
+        self.receive_for(draw, packet.settled);
         let mut uploads = 0;
         if let Some(pose) = &packet.subject {
             if let Some(s) = self.res.subjects.active_mut() {
@@ -129,7 +121,7 @@ impl Renderer {
         let mut subject =
             (draw.character && self.res.subjects.active().is_some()).then(|| SubjectDraw {
                 slot: self.res.subjects.active_slot(),
-                pipeline: draw.shading.map(key),
+                shading: draw.shading,
             });
         let mut split = draw
             .shading
@@ -168,6 +160,25 @@ impl Renderer {
         );
         frame.uploads += 1;
         frame
+    }
+
+    /// Installs the character pipelines built so far, waiting for those `draw` needs for the
+    /// subject's skin parts (with and without a normal map), or with `all` for every one.
+    fn receive_for(&mut self, draw: crate::scene::DrawSet, all: bool) {
+        let gpu = self.res.subjects.active().map(|s| &s.gpu);
+        let (plain, mapped) = gpu.map_or((false, false), |g| (g.plain, g.normal_mapped));
+        let mut need = [(ShadingModel::BASELINE, false); 2];
+        let mut n = 0;
+        if let Some(m) = draw.shading.filter(|_| draw.character) {
+            for (wanted, key) in [(plain, (m, false)), (mapped, (m, true))] {
+                if wanted {
+                    need[n] = key;
+                    n += 1;
+                }
+            }
+        }
+        self.pipelines
+            .receive(&mut self.res.models, &need[..n], all);
     }
 
     /// This frame's shadow view for a light at `light` ([`ShadowView::NONE`] when nothing
@@ -246,6 +257,10 @@ impl Renderer {
     /// Installs the character pipelines built in the background so far; blocks for `need`'s
     /// or, with `all`, for every one (before play, where nothing may be created).
     pub fn receive_pipelines(&mut self, need: Option<PipelineKey>, all: bool) {
+        let need: &[PipelineKey] = match &need {
+            Some(k) => std::slice::from_ref(k),
+            None => &[],
+        };
         self.pipelines.receive(&mut self.res.models, need, all);
     }
 
@@ -280,41 +295,61 @@ impl Renderer {
         }
     }
 
-    /// Uploads the character (replacing any previous one) with `material`'s constants.
+    /// Uploads the character (replacing any previous one), its materials drawn as `roles`
+    /// says and its skin with their optics.
     pub fn load_character(
         &mut self,
         gpu: &Gpu,
         model: &Model,
-        material: &Material,
+        roles: &Roles,
     ) -> Result<(), String> {
-        let layouts = &self.res.layouts;
-        let subject = SkinnedGpu::new(&gpu.device, &gpu.queue, layouts, &self.res.sampler, model)?;
-        self.install_character(gpu, model, subject, material);
+        let subject = self.upload_subject(gpu, model, roles)?;
+        self.install_character(gpu, (model, roles), subject);
         Ok(())
+    }
+
+    fn upload_subject(
+        &self,
+        gpu: &Gpu,
+        model: &Model,
+        roles: &Roles,
+    ) -> Result<SkinnedGpu, String> {
+        let res = &self.res;
+        SkinnedGpu::new(
+            &gpu.device,
+            &gpu.queue,
+            (&res.layouts, &res.sampler),
+            model,
+            roles,
+        )
     }
 
     /// Makes `subject`, uploaded from `model`, the character (slot 0), drawn.
     pub(super) fn install_character(
         &mut self,
         gpu: &Gpu,
-        model: &Model,
+        (model, roles): (&Model, &Roles),
         subject: SkinnedGpu,
-        material: &Material,
     ) {
-        self.prepare_for(gpu, &subject);
+        self.prepare_for(gpu, (model, roles), &subject);
         let bound = model_sphere(model).unwrap_or(CHARACTER.sphere_at(Vec3::ZERO));
         self.res.subjects.set_character(Subject {
             gpu: subject,
             bound,
         });
         self.res.casters.character = Some(CHARACTER);
-        self.set_material(gpu, material);
+        self.set_material(gpu, &roles.optics);
         self.refresh_passes(gpu);
     }
 
-    /// What drawing `subject` needs: the normal-mapped pipelines if it has a normal map, the
-    /// light maps.
-    fn prepare_for(&mut self, gpu: &Gpu, subject: &SkinnedGpu) {
+    /// What drawing `subject` needs: the normal-mapped pipelines if a skin part has a normal
+    /// map, its standard materials' pipelines, the light maps.
+    fn prepare_for(&mut self, gpu: &Gpu, (model, roles): (&Model, &Roles), subject: &SkinnedGpu) {
+        for key in standard_keys(model, roles) {
+            if !self.res.standard.contains(&key) {
+                self.res.standard.push(key);
+            }
+        }
         if subject.normal_mapped {
             self.pipelines
                 .add_normal_mapped(&mut self.res.models, &gpu.device);
@@ -335,16 +370,22 @@ impl Renderer {
         self.refresh_passes(gpu);
     }
 
-    /// Uploads another subject beside the character (the showroom's scanned head), drawn
-    /// with the renderer's material; returns its slot for a packet's `slot` (the character
-    /// is slot 0, loaded first). The character stays the one drawn.
-    pub fn add_subject(&mut self, gpu: &Gpu, model: &Model) -> Result<usize, String> {
+    /// Uploads another subject beside the character (the showroom's scanned head), its
+    /// materials drawn as `roles` says, its skin with the renderer's optics; returns its slot
+    /// for a packet's `slot` (the character is slot 0, loaded first). The character stays the
+    /// one drawn.
+    pub fn add_subject(
+        &mut self,
+        gpu: &Gpu,
+        model: &Model,
+        roles: &Roles,
+    ) -> Result<usize, String> {
         if self.res.subjects.iter().next().is_none() {
             return Err(format!("{}: load the character first", model.source));
         }
-        let layouts = &self.res.layouts;
-        let subject = SkinnedGpu::new(&gpu.device, &gpu.queue, layouts, &self.res.sampler, model)?;
-        self.prepare_for(gpu, &subject);
+        let subject = self.upload_subject(gpu, model, roles)?;
+        self.prepare_for(gpu, (model, roles), &subject);
+        self.refresh_passes(gpu);
         let bound = model_sphere(model).unwrap_or(CHARACTER.sphere_at(Vec3::ZERO));
         Ok(self.res.subjects.add(Subject {
             gpu: subject,
@@ -362,15 +403,15 @@ impl Renderer {
         self.res.subjects.active().map_or(0, |s| s.gpu.triangles)
     }
 
-    /// Uploads a scene: the character with `material`'s constants and every prop model.
+    /// Uploads a scene: the character, its materials drawn as `roles` says, and every prop
+    /// model.
     pub fn load_scene(
         &mut self,
         gpu: &Gpu,
-        character: &Model,
+        (character, roles): (&Model, &Roles),
         props: &[(PropKind, Model)],
-        material: &Material,
     ) -> Result<(), String> {
-        self.load_character(gpu, character, material)?;
+        self.load_character(gpu, character, roles)?;
         for (kind, model) in props {
             self.load_prop(gpu, *kind, model);
         }

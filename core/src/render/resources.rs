@@ -98,6 +98,8 @@ pub struct Resources {
     /// One record per shading model the scene can reach.
     pub models: ModelTable,
     pub subjects: Subjects,
+    /// The standard materials' pipelines the subjects loaded need.
+    pub standard: Vec<super::passes::character::StandardKey>,
     /// The prop kinds uploaded, one record each.
     pub props: Vec<PropGpu>,
     /// What casts a blob shadow (recorded at load).

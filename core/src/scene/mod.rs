@@ -6,11 +6,13 @@
 mod frame;
 mod light;
 mod props;
+mod roles;
 mod stage;
 
 pub use frame::{DrawSet, FramePacket, FrameView, SubjectPose};
 pub use light::Light;
 pub use props::{PropInstance, PropKind};
+pub use roles::{Role, Roles};
 pub use stage::{key_light, CharacterBound, CHARACTER, EXPOSURE, KEY_LIGHT_OFFSET};
 
 use std::path::Path;
@@ -24,6 +26,8 @@ use crate::asset::{load_gltf, load_gltf_slice, AssetError, Model};
 /// Everything the demo and the game load at start (nothing is read from disk later).
 pub struct SceneAssets {
     pub character: Model,
+    /// How the character's materials are drawn (which are skin: `asset::skin::classify`).
+    pub roles: Roles,
     pub props: Vec<(PropKind, Model)>,
     /// The scanned head for the game's showroom (`face::head`), where the shell asked for it
     /// ([`SceneAssets::with_head`], or the game's loader thread); the APK does not carry it.
@@ -87,8 +91,10 @@ impl SceneAssets {
     /// the file system (with the loader's size and file-type checks).
     pub fn load(assets_dir: &Path, character: Option<&Path>) -> Result<Self, AssetError> {
         let default = assets_dir.join(Self::CHARACTER);
+        let character = load_gltf(character.unwrap_or(&default))?;
         Ok(Self {
-            character: load_gltf(character.unwrap_or(&default))?,
+            roles: Roles::of(&character),
+            character,
             props: Self::props(&|path| load_gltf(&assets_dir.join(path)))?,
             head: HeadLoad::default(),
         })
@@ -115,8 +121,10 @@ impl SceneAssets {
             };
             load_gltf_slice(&bytes, path, &resolve)
         };
+        let character = model(Self::CHARACTER)?;
         Ok(Self {
-            character: model(Self::CHARACTER)?,
+            roles: Roles::of(&character),
+            character,
             props: Self::props(&model)?,
             head: HeadLoad::default(),
         })

@@ -22,6 +22,8 @@ pub const SHARED: &[(&str, &str)] = &[
     ),
     ("sss_pass", include_str!("../../../shaders/sss_pass.wgsl")),
     ("unlit", include_str!("../../../shaders/unlit.wgsl")),
+    ("material", include_str!("../../../shaders/material.wgsl")),
+    ("pbr", include_str!("../../../shaders/pbr.wgsl")),
     ("character", include_str!("../../../shaders/character.wgsl")),
     ("prop", include_str!("../../../shaders/prop.wgsl")),
     ("ui", include_str!("../../../shaders/ui.wgsl")),

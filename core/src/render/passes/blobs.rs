@@ -213,15 +213,13 @@ impl BlobsPass {
                 label: Some("blob shadow"),
                 source: wgpu::ShaderSource::Wgsl(shader_source(split).into()),
             });
+            let untouched = Some(wgpu::ColorTargetState {
+                format: SPLIT_FORMAT,
+                blend: None,
+                write_mask: wgpu::ColorWrites::empty(),
+            });
             let targets = if split {
-                vec![
-                    shade(SPLIT_FORMAT),
-                    Some(wgpu::ColorTargetState {
-                        format: SPLIT_FORMAT,
-                        blend: None,
-                        write_mask: wgpu::ColorWrites::empty(),
-                    }),
-                ]
+                vec![shade(SPLIT_FORMAT), untouched.clone(), untouched]
             } else {
                 vec![shade(ctx.format)]
             };

@@ -57,6 +57,8 @@ pub struct BuildCtx<'a> {
     pub blobs: bool,
     /// The UI is drawn (the game).
     pub ui: bool,
+    /// The standard materials' pipelines the loaded subjects need.
+    pub standard: &'a [character::StandardKey],
 }
 
 /// One pass of the frame (see the module docs).

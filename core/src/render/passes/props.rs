@@ -45,13 +45,14 @@ fn prop_pipeline(
 ) -> wgpu::RenderPipeline {
     let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
         label: Some("prop"),
-        bind_group_layouts: &[Some(&layouts.frame), Some(&layouts.prop_material)],
+        bind_group_layouts: &[Some(&layouts.frame), Some(&layouts.material)],
         immediate_size: 0,
     });
+    let defs = ShaderDefs::new().flag("INSTANCED");
     let defs = if split {
-        ShaderDefs::new().flag("SCREEN_SPACE")
+        defs.flag("SCREEN_SPACE")
     } else {
-        ShaderDefs::new()
+        defs
     };
     let source = compose("prop", &defs).expect("built-in shaders compose");
     let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {

@@ -27,13 +27,17 @@ pub fn shader_source() -> String {
     compose("sss_pass", &ShaderDefs::new()).expect("built-in shaders compose")
 }
 
-/// The scene's two targets in a frame with the subsurface pass, for one size.
+/// The scene's three targets in a frame with the subsurface pass, for one size: radiance that
+/// stays (with the skin marker), irradiance to spread (with the pixel's size), the exit
+/// factor per channel.
 pub struct SplitTargets {
     pub size: (u32, u32),
     pub colour_msaa: wgpu::TextureView,
     pub spread_msaa: wgpu::TextureView,
+    pub exit_msaa: wgpu::TextureView,
     pub colour: wgpu::TextureView,
     pub spread: wgpu::TextureView,
+    pub exit: wgpu::TextureView,
 }
 
 impl SplitTargets {
@@ -62,13 +66,15 @@ impl SplitTargets {
             size: (width, height),
             colour_msaa: make("subsurface colour msaa", MSAA_SAMPLES, attach),
             spread_msaa: make("subsurface spread msaa", MSAA_SAMPLES, attach),
+            exit_msaa: make("subsurface exit msaa", MSAA_SAMPLES, attach),
             colour: make("subsurface colour", 1, sampled),
             spread: make("subsurface spread", 1, sampled),
+            exit: make("subsurface exit", 1, sampled),
         }
     }
 
-    /// Opens the scene's pass into these targets: both cleared, alpha −1 in the colour
-    /// target telling the gather that nothing was drawn there, resolved at its end.
+    /// Opens the scene's pass into these targets: all cleared, alpha −1 in the colour target
+    /// telling the gather that nothing was drawn there, resolved at its end.
     pub fn scene_pass<'e>(
         &self,
         ctx: &'e mut PassCtx<'_>,
@@ -92,6 +98,7 @@ impl SplitTargets {
             color_attachments: &[
                 attachment(&self.colour_msaa, &self.colour),
                 attachment(&self.spread_msaa, &self.spread),
+                attachment(&self.exit_msaa, &self.exit),
             ],
             depth_stencil_attachment: Some(resolve::depth_attachment(ctx.targets)),
             timestamp_writes: timer,
@@ -142,6 +149,7 @@ impl SubsurfacePass {
                     3,
                     wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
                 ),
+                entry(4, texture),
             ],
         });
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
@@ -252,6 +260,10 @@ impl Pass for SubsurfacePass {
                         wgpu::BindGroupEntry {
                             binding: 3,
                             resource: wgpu::BindingResource::Sampler(&self.sampler),
+                        },
+                        wgpu::BindGroupEntry {
+                            binding: 4,
+                            resource: wgpu::BindingResource::TextureView(&targets.exit),
                         },
                     ],
                 });
