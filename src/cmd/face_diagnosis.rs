@@ -1,7 +1,8 @@
 //! `bench face`'s diagnosis of the face scores: for every model and light the signed integrated
 //! bias per channel, ln(Σ model / Σ truth) over the scored blocks; for the affordable tier and
 //! the screen-space models (`preintegrated`, `tabulated`, `burley`) a per-block image of
-//! ln(model/truth) (`face-<light>-<model>-lnerr.png`: red too bright, blue too dark, ±0.5 full
+//! ln(model/truth) over the blocks where the truth's relative SE ≤ `score::WIDE_REL_SE`
+//! (`face-<light>-<model>-lnerr.png`: red too bright, blue too dark, ±0.5 full
 //! scale; grey not scored) and the signed mean error per region of the head (eye sockets, nose,
 //! lips, the ear, the neck, the rest).
 
@@ -23,10 +24,13 @@ pub const MAPPED: [ShadingModel; 3] = [
 /// Full scale of the ln-error images.
 const RANGE: f64 = 0.5;
 
+/// One model under one light: its signed integrated ln ratio per channel and, when mapped, its
+/// regions.
+type Row = (ShadingModel, String, [f64; 3], Option<Vec<RegionError>>);
+
 #[derive(Default)]
 pub struct Diagnosis {
-    /// (model, light, signed integrated ln ratio per channel, regions when mapped).
-    rows: Vec<(ShadingModel, String, [f64; 3], Option<Vec<RegionError>>)>,
+    rows: Vec<Row>,
     pub json: Vec<Value>,
 }
 

@@ -50,7 +50,6 @@ pub fn run(args: &ReferenceArgs) -> Result<(), String> {
             ));
         }
     }
-    drop(mesh);
     let run = TruthRun {
         photons: args.photons.unwrap_or(DEFAULT_PHOTONS),
         seed: args.seed,
@@ -62,6 +61,7 @@ pub fn run(args: &ReferenceArgs) -> Result<(), String> {
         let mut progress = Progress::new(&format!("reference head {name}"), 1);
         let truth = truth::compute(
             &scene,
+            &mesh,
             name,
             *position,
             head::LIGHT_INTENSITY,

@@ -19,7 +19,8 @@ counts, seeds, times, and the sha256 of scene.json and head.ply the images were 
 Options: --alpha A (the boundary's GGX roughness, default 0.35: skin's specular lobe; the
 cross-check uses 0.1, where the boundary loses ≤ 3 % of the light crossing it, see
 docs/results/mitsuba-roughness.md), --spp N per channel and seed (default 256, or $SPP),
---seeds S... (default 1 2), --lights a,b (default all; or $LIGHTS), --size N (an N×N image
+--face-normals (the triangles' normals, as the dermis truth walks them; default: Mitsuba's
+interpolated shading normals), --seeds S... (default 1 2), --lights a,b (default all; or $LIGHTS), --size N (an N×N image
 over the same field of view: the cross-check's integrals need samples, not pixels).
 
 Facts this relies on (measured here): the llvm_* variants abort with LLVM 15, so scalar_rgb;
@@ -49,6 +50,9 @@ ALPHA = 0.35
 SPP = int(os.environ.get("SPP", "256"))
 SPP_SPECULAR = int(os.environ.get("SPP_SPECULAR", "64"))
 SEEDS = (1, 2)
+# --face-normals: the triangles' own normals for the boundary (the dermis truth's), else the
+# interpolated vertex normals (Mitsuba's shading normals).
+FACE_NORMALS = False
 
 
 def sha256(path):
@@ -112,7 +116,7 @@ def scene_dict(scene, light, interior):
         "head": {
             "type": "ply",
             "filename": scene["mesh"],
-            "face_normals": False,
+            "face_normals": FACE_NORMALS,
             "bsdf": {
                 "type": "roughdielectric",
                 "distribution": "ggx",
@@ -164,7 +168,7 @@ def restamp(out):
 
 
 def main():
-    global ALPHA, SPP, SEEDS
+    global ALPHA, SPP, SEEDS, FACE_NORMALS
     if len(sys.argv) == 3 and sys.argv[1] == "--restamp":
         return restamp(sys.argv[2])
     parser = argparse.ArgumentParser(description="DIR/scene.json, DIR/head.ply from dermis")
@@ -175,7 +179,9 @@ def main():
     parser.add_argument("--lights", default=os.environ.get("LIGHTS"))
     parser.add_argument("--size", type=int, help="image side instead of scene.json's (the same "
                         "field of view: an integrated cross-check needs few pixels, many samples)")
+    parser.add_argument("--face-normals", action="store_true")
     args = parser.parse_args()
+    FACE_NORMALS = args.face_normals
     if not (0.0 < args.alpha <= 1.0) or args.spp < 1 or not args.seeds:
         sys.exit("render.py: --alpha must be in (0, 1], --spp at least 1, a seed given")
     ALPHA, SPP, SEEDS = args.alpha, args.spp, tuple(args.seeds)
@@ -192,7 +198,8 @@ def main():
         "mitsuba": mi.__version__,
         "variant": mi.variant(),
         "integrator": "volpath (max_depth -1, rr_depth 64), one grey medium per channel",
-        "boundary": "roughdielectric ggx alpha %.2f" % ALPHA,
+        "boundary": "roughdielectric ggx alpha %.2f%s" % (
+            ALPHA, ", face normals" if FACE_NORMALS else ", vertex normals"),
         "spp": SPP,
         "size": scene["camera"]["width"],
         "spp_specular": SPP_SPECULAR,

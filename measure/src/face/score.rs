@@ -16,6 +16,9 @@ use dermis_core::face::pfm::FloatImage;
 pub const BLOCK: u32 = 4;
 /// Largest relative standard error of the truth at which a block's channel is scored.
 pub const MAX_REL_SE: f32 = 0.02;
+/// The looser bar of the second score and of the diagnosis: it reaches the dimmer blocks (the
+/// terminator, the eye sockets, the back light's rim) at a noise floor of about 0.8 × 0.03.
+pub const WIDE_REL_SE: f32 = 0.05;
 /// The most one block's channel can add (a zero or negative model value).
 pub const CAP: f64 = 10.0;
 
@@ -30,6 +33,8 @@ pub struct Reference {
     pub noise: Vec<[f32; 3]>,
     /// Scored block channels.
     pub mask: Vec<[bool; 3]>,
+    /// Blocks the head covers wholly.
+    covered: Vec<bool>,
     block: u32,
 }
 
@@ -103,22 +108,29 @@ impl Reference {
             .iter()
             .map(|v| v.map(|v| (v / n).sqrt()))
             .collect();
-        let mask = bm
-            .pixels
-            .iter()
-            .zip(&noise)
-            .zip(&bc.pixels)
-            .map(|((m, s), c)| {
-                std::array::from_fn(|k| c[0] >= 0.999 && m[k] > 0.0 && s[k] <= MAX_REL_SE * m[k])
-            })
-            .collect();
+        let covered = bc.pixels.iter().map(|c| c[0] >= 0.999).collect();
         Ok(Self {
             full: mean.clone(),
             mean: bm,
             noise,
-            mask,
+            mask: Vec::new(),
+            covered,
             block,
-        })
+        }
+        .with_max_rel_se(MAX_REL_SE))
+    }
+
+    /// The same truth scored where its relative standard error is at most `limit`.
+    pub fn with_max_rel_se(mut self, limit: f32) -> Self {
+        self.mask = self
+            .mean
+            .pixels
+            .iter()
+            .zip(&self.noise)
+            .zip(&self.covered)
+            .map(|((m, s), c)| std::array::from_fn(|k| *c && m[k] > 0.0 && s[k] <= limit * m[k]))
+            .collect();
+        self
     }
 
     /// Relative standard errors of the scored block channels, ascending.

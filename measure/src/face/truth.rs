@@ -321,10 +321,12 @@ pub fn cpu_seconds() -> f64 {
     f.iter().sum::<f64>() / 100.0
 }
 
-/// Computes the truth of `scene` under a point light at `light` [m] of `intensity` W/sr.
-/// `progress(done, total)` counts photons over the three channels.
+/// Computes the truth of `scene` (its walkable `mesh`: [`FaceScene::closed_mesh`]) under a
+/// point light at `light` [m] of `intensity` W/sr. `progress(done, total)` counts photons over
+/// the three channels.
 pub fn compute(
     scene: &FaceScene,
+    mesh: &ClosedMesh,
     name: &str,
     light: Vec3,
     intensity: f32,
@@ -337,7 +339,6 @@ pub fn compute(
     if run.photons == 0 {
         return Err("no photons".into());
     }
-    let mesh = scene.closed_mesh()?;
     let light_mm = light.as_dvec3() * MM;
     if mesh.contains(light_mm) {
         return Err(format!(
@@ -347,7 +348,7 @@ pub fn compute(
     }
     let (w, h) = (scene.width, scene.height);
     let cam = Projector::new(&scene.camera, w, h);
-    let (alpha, seen) = coverage(&mesh, &cam);
+    let (alpha, seen) = coverage(mesh, &cam);
     let field = DistanceField::new(&seen, mesh.lo, mesh.hi, ROULETTE_VOXEL_MM, 32);
     let roulette = EntryRoulette {
         field: &field,
@@ -382,7 +383,7 @@ pub fn compute(
     };
     for ch in 0..3 {
         let medium = Medium::new(m.sigma_a[ch], m.sigma_s_prime[ch], m.g, m.eta);
-        let mut walker = MeshWalker::new(&mesh, &medium, light_mm);
+        let mut walker = MeshWalker::new(mesh, &medium, light_mm);
         walker.roulette = Some(roulette);
         let nbatches = nbatches[ch];
         record.cone_sr = walker.cone_solid_angle();
