@@ -63,6 +63,10 @@ fn exposure(front: &Reference, alpha: &[f32]) -> f32 {
     (0.35 / (sum / n.max(1) as f64).max(1e-9)) as f32
 }
 
+/// Median and 95th percentile of the truth's relative SE over its scored block channels, and
+/// their count.
+type Quantiles = (f64, f64, usize);
+
 /// One model's mean |ln(model/reference)| per light (name, error).
 pub type FaceScore = (ShadingModel, Vec<(String, f64)>);
 
@@ -155,7 +159,7 @@ pub fn run(args: FaceArgs) -> Result<(), String> {
         let q = |p| q(p).copied().unwrap_or(f64::NAN);
         (q(0.5), q(0.95), rel.len())
     };
-    let noise: Vec<(String, (f64, f64, usize), (f64, f64, usize))> = truths
+    let noise: Vec<(String, Quantiles, Quantiles)> = truths
         .iter()
         .map(|(_, t)| {
             let wide = t.reference.clone().with_max_rel_se(WIDE_REL_SE);
