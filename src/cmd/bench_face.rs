@@ -27,6 +27,10 @@ pub struct FaceArgs {
     /// The cached truth (default: the source tree's tools/reference/face).
     #[arg(long)]
     pub cache: Option<PathBuf>,
+    /// Render the head without its normal map (the truth's smooth mesh), to tell the map's
+    /// share of the error.
+    #[arg(long)]
+    pub no_normal_map: bool,
 }
 
 /// The default cache directory.
@@ -117,7 +121,11 @@ pub fn run(args: FaceArgs) -> Result<(), String> {
     }
     let material: Material = scene.material;
     let alpha = truth_cache::load_alpha(&dir)?;
-    let model = head::load(&crate::paths::assets_dir(), false).map_err(|e| e.to_string())?;
+    let maps = head::Maps {
+        albedo: false,
+        normal: !args.no_normal_map,
+    };
+    let model = head::load_with(&crate::paths::assets_dir(), maps).map_err(|e| e.to_string())?;
     let gpu = Gpu::headless().map_err(|e| e.to_string())?;
     let (w, h) = (scene.width, scene.height);
     let mut renderer = HeadRenderer::new(&gpu, &model, &material, w, h, true)?;

@@ -198,6 +198,7 @@ pub const ROWS: &[Row] = &[
         Kind::InFile,
         &["--out", "{tmp}/face"],
     ),
+    row("bench face", "no-normal-map", Kind::Switch),
     row("bench shading", "out", Kind::OutDir),
     row("bench shading", "rounds", Kind::Count),
     with(
