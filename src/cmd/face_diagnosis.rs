@@ -1,6 +1,6 @@
 //! `bench face`'s diagnosis of the face scores: for every model and light the signed integrated
-//! bias per channel, ln(Σ model / Σ truth) over the scored blocks; for the affordable tier and
-//! the screen-space models (`preintegrated`, `tabulated`, `burley`) a per-block image of
+//! bias per channel, ln(Σ model / Σ truth) over the scored blocks; for the spatial models (the
+//! affordable tier and the screen-space ones: [`mapped`]) a per-block image of
 //! ln(model/truth) over the blocks where the truth's relative SE ≤ `score::WIDE_REL_SE`
 //! (`face-<light>-<model>-lnerr.png`: red too bright, blue too dark, ±0.5 full
 //! scale; grey not scored) and the signed mean error per region of the head (eye sockets, nose,
@@ -15,12 +15,12 @@ use dermis_measure::face::regions::{ln_error_png, region_errors, RegionError};
 use dermis_measure::face::score::{block_means, Reference, BLOCK};
 use serde_json::{json, Value};
 
-/// The models whose errors are mapped and split by region.
-pub const MAPPED: [ShadingModel; 3] = [
-    ShadingModel::Preintegrated,
-    ShadingModel::Tabulated,
-    ShadingModel::Burley,
-];
+/// Whether `m`'s errors are mapped and split by region: the spatial models, those that carry
+/// a diffusion kernel or a LUT (today `burley`, `tabulated`, `preintegrated`).
+pub fn mapped(m: ShadingModel) -> bool {
+    let d = m.descriptor();
+    d.kernel.is_some() || d.lut.is_some()
+}
 /// Full scale of the ln-error images.
 const RANGE: f64 = 0.5;
 
@@ -65,9 +65,7 @@ impl Diagnosis {
                 f64::NAN
             }
         });
-        let mapped = MAPPED
-            .contains(&shading)
-            .then(|| region_errors(reference, image, regions, BLOCK));
+        let mapped = mapped(shading).then(|| region_errors(reference, image, regions, BLOCK));
         if mapped.is_some() {
             let (w, h, rgb) = ln_error_png(reference, image, BLOCK, None, RANGE, 8);
             let path = out.join(format!("face-{light}-{}-lnerr.png", shading.name()));
