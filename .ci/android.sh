@@ -236,9 +236,9 @@ check_apk() {
     # --- the scanned head (the showroom's subject) and its licence; textures as ETC2 only
     local entry
     for entry in assets/head/LeePerrySmith.glb assets/head/LeePerrySmith_License.txt \
-        assets/head/Map-COL.jpg.textures/base-color.etc2.ktx2 \
-        assets/head/Infinite-Level_02_Tangent_SmoothUV.jpg.textures/normal.etc2.ktx2 \
-        assets/character.glb.textures/0-base-color-mask.etc2.ktx2; do
+        assets/head/Map-COL.jpg.textures/colour.etc2.ktx2 \
+        assets/head/Infinite-Level_02_Tangent_SmoothUV.jpg.textures/data.etc2.ktx2 \
+        assets/character.glb.textures/0-colour.etc2.ktx2; do
         if awk -v e="$entry" '$NF == e { ok = 1 } END { exit !ok }' <<<"$out"; then
             pass "carries $entry"
         else

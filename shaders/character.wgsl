@@ -1,17 +1,14 @@
-// The skinned character: vertex skinning + the selected shading model (`shading_model` is an
-// alias bound per pipeline to ward / dipole / oss / ...) on the skin, and the cloth BRDF
-// (common.wgsl) elsewhere: the base colour's alpha is the skin mask (1: skin; the loader sets
-// it to 1 for materials that declare no mask), blended across its edges.
+// The skinned subject, one pipeline per part kind: vertex skinning, then for a skin part the
+// selected shading model (`shading_model`, an alias bound per pipeline to ward / dipole / oss
+// / ...) and for a STANDARD part the glTF metallic-roughness lighting the props share
+// (`pbr.wgsl`). A part's material is bound at group 3 (`material.wgsl`).
 #import common
 #import skinning
+#import material
+#ifdef STANDARD
+#import pbr
+#else
 #import shading_model
-
-@group(2) @binding(1) var base_color: texture_2d<f32>;
-@group(2) @binding(2) var base_sampler: sampler;
-#ifdef NORMAL_MAP
-// Tangent-space normal map (rgb = (xyz + 1) / 2, +y toward decreasing v); alpha 0: none (the
-// flat default of a part without one). Only in the pipelines of meshes that have one.
-@group(2) @binding(3) var normal_map: texture_2d<f32>;
 #endif
 
 struct VertexIn {
@@ -47,28 +44,14 @@ fn vs_main(v: VertexIn) -> VertexOut {
     return out;
 }
 
-#ifdef NORMAL_MAP
-// The shading normal: the normal map's, in the interpolated tangent frame (the bitangent
-// points toward increasing v, so the map's +y is −b); without a map, the vertex normal as it is.
-fn shading_normal(in: VertexOut) -> vec3<f32> {
-    let m = textureSample(normal_map, base_sampler, in.uv);
-    let n = safe_normalize(in.normal, vec3<f32>(0.0, 1.0, 0.0));
-    var t = in.tangent.xyz - n * dot(n, in.tangent.xyz);
-    t = safe_normalize(t, select(vec3<f32>(1.0, 0.0, 0.0), vec3<f32>(0.0, 0.0, 1.0), abs(n.x) > 0.9));
-    let b = cross(n, t) * select(1.0, -1.0, in.tangent.w < 0.0);
-    let k = m.xyz * 2.0 - 1.0;
-    let mapped = safe_normalize(t * k.x - b * k.y + n * k.z, n);
-    return select(in.normal, mapped, m.a > 0.5);
-}
-#else
-// A mesh without a normal map: the vertex normal.
-fn shading_normal(in: VertexOut) -> vec3<f32> {
-    return in.normal;
-}
+// The shading surface at a fragment: the material's normal (its map where the pipeline has
+// one; flipped on the back of a double-sided part), the albedo.
+fn surface_at(in: VertexOut, albedo: vec3<f32>, front: bool) -> Surface {
+    var normal = material_normal(in.normal, in.tangent, in.uv);
+#ifdef DOUBLE_SIDED
+    normal = select(-normal, normal, front);
 #endif
-
-fn surface_at(in: VertexOut, albedo: vec3<f32>) -> Surface {
-    var s = make_surface(in.world_pos, shading_normal(in), in.tangent, albedo, in.thickness);
+    var s = make_surface(in.world_pos, normal, in.tangent, albedo, in.thickness);
     // Curvature radius from screen-space derivatives: how far the surface moves per unit of
     // normal change across a pixel (large on flat parts, small on fingers and ears).
     let dn = length(fwidth(in.normal));
@@ -77,55 +60,81 @@ fn surface_at(in: VertexOut, albedo: vec3<f32>) -> Surface {
     return s;
 }
 
+#ifdef STANDARD
+// A standard part's radiance and coverage: base colour × factor (masked below its cutoff),
+// the PBR lighting, the emission; alpha where the part blends.
+fn standard(in: VertexOut, front: bool) -> vec4<f32> {
+    let base = material_base(in.uv);
+#ifdef ALPHA_MASK
+    if (base.a < material.alpha_cutoff) {
+        discard;
+    }
+#endif
+    let s = surface_at(in, base.rgb, front);
+    let mr = material_metallic_roughness(in.uv);
+    let c = pbr_radiance(s, base.rgb, mr.x, mr.y, material_occlusion(in.uv)) + material_emissive(in.uv);
+#ifdef ALPHA_BLEND
+    return vec4<f32>(c, base.a);
+#else
+    return vec4<f32>(c, 1.0);
+#endif
+}
+#else
+// A skin part's surface: its albedo is the pigment where the material says so.
+fn skin_surface(in: VertexOut, front: bool) -> Surface {
+    var s = surface_at(in, material_base(in.uv).rgb, front);
+    s.pigmented = material.pigmented != 0u;
+    return s;
+}
+#endif
+
 #ifdef SCREEN_SPACE
-// Spatial models write two targets: radiance that stays (rgb) with the exit factor (a), and
-// the irradiance the subsurface pass spreads (rgb) with the pixel's size in mm (a): the
-// world-space step between neighbouring pixels, minus its part along the view ray, is the
-// pixel's footprint on the plane facing the camera at this depth.
+// A frame with the subsurface pass writes three targets: radiance that stays (rgb) with the
+// skin marker (a: 1 skin, 0 not), the irradiance the pass spreads (rgb) with the pixel's size
+// in mm (a), and the exit factor per channel (rgb): what turns the spread exitance into
+// radiance toward the viewer here. The pixel's size: the world-space step between
+// neighbouring pixels, minus its part along the view ray, its footprint on the plane facing
+// the camera at this depth.
 struct SplitOut {
     @location(0) colour: vec4<f32>,
     @location(1) spread: vec4<f32>,
+    @location(2) exit: vec4<f32>,
 };
 
-// Cloth writes exit 0 and a zero pixel size: the pass leaves it as it is and its
-// neighbours take it for "not skin"; a partly skin pixel spreads the irradiance its skin part
-// received and takes its share of what comes back.
 @fragment
-fn fs_main(in: VertexOut) -> SplitOut {
-    let tex = textureSample(base_color, base_sampler, in.uv);
-    let s = surface_at(in, tex.rgb);
-    let skin = tex.a;
+fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> SplitOut {
+    var out: SplitOut;
+#ifdef STANDARD
+    // Not skin: it stays, nothing to spread, exit 0. A blended part's pipeline writes only
+    // the colour, premultiplied, over what is behind it (the marker stays).
+    let c = standard(in, front);
+#ifdef ALPHA_BLEND
+    out.colour = vec4<f32>(c.rgb * c.a, c.a);
+#else
+    out.colour = vec4<f32>(c.rgb, 0.0);
+#endif
+    out.spread = vec4<f32>(0.0);
+    out.exit = vec4<f32>(0.0);
+#else
+    let s = skin_surface(in, front);
     let dx = dpdx(in.world_pos);
     let dy = dpdy(in.world_pos);
     let px = 0.5 * (length(dx - s.v * dot(s.v, dx)) + length(dy - s.v * dot(s.v, dy)));
-    // Cloth first: the skin model then runs with only the cloth's colour left to carry.
-    var out: SplitOut;
-    out.colour = vec4<f32>(0.0);
-    out.spread = vec4<f32>(0.0);
-    if (skin < 1.0) {
-        out.colour = vec4<f32>(cloth_radiance(s) * (1.0 - skin), 0.0);
-    }
-    if (skin > 0.0) {
-        let p = shade_split(s);
-        out.colour = vec4<f32>(out.colour.rgb + p.local * skin, p.exit * skin);
-        out.spread = vec4<f32>(p.spread, max(px * 1000.0, 1e-6));
-    }
+    let p = shade_split(s);
+    out.colour = vec4<f32>(p.local, 1.0);
+    out.spread = vec4<f32>(p.spread, max(px * 1000.0, 1e-6));
+    out.exit = vec4<f32>(p.exit, 0.0);
+#endif
     return out;
 }
 #else
 @fragment
-fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
-    let tex = textureSample(base_color, base_sampler, in.uv);
-    let s = surface_at(in, tex.rgb);
-    let skin = tex.a;
-    // Cloth first: the skin model then runs with only the cloth's colour left to carry.
-    var c = vec3<f32>(0.0);
-    if (skin < 1.0) {
-        c = cloth_radiance(s) * (1.0 - skin);
-    }
-    if (skin > 0.0) {
-        c = c + shade(s) * skin;
-    }
-    return finish(c);
+fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
+#ifdef STANDARD
+    let c = standard(in, front);
+    return vec4<f32>(finish(c.rgb).rgb, c.a);
+#else
+    return finish(shade(skin_surface(in, front)));
+#endif
 }
 #endif

@@ -5,24 +5,36 @@ const INV_PI: f32 = 0.318309886183791;
 
 struct FrameUniform {
     view_proj: mat4x4<f32>,
-    camera_pos: vec4<f32>,
-    // xyz: point-light position (m); w: radiant intensity.
-    light_pos: vec4<f32>,
-    // rgb: light colour (linear).
-    light_color: vec4<f32>,
-    // rgb: ambient radiance (linear).
-    ambient: vec4<f32>,
-    // x: exposure; y: 1 when the target is not an sRGB format and we encode by hand;
-    // z: 1 to write raw radiance (HDR float targets, numerical checks).
-    output: vec4<f32>,
-    // The key light's shadow map (core/src/render/shadow_map.rs): world → its clip space.
+    camera_pos: vec3<f32>,
+    // Multiplies radiance before tone mapping.
+    exposure: f32,
+    // The point light's position (m) and radiant intensity (W/sr).
+    light_pos: vec3<f32>,
+    light_intensity: f32,
+    // The light's colour (linear).
+    light_color: vec3<f32>,
+    // 1 when the target is not an sRGB format and the shader encodes by hand.
+    srgb_encode: u32,
+    // Ambient radiance (linear).
+    ambient: vec3<f32>,
+    // 1 to write raw radiance (float targets, numerical checks).
+    raw_output: u32,
+    // The key light's shadow map (core/src/render/shadow_view.rs): world → its clip space.
     shadow_view_proj: mat4x4<f32>,
-    // x: 1 when a shadow map was drawn this frame (0: nothing casts, every point is lit);
-    // y: normal offset (m, half a texel); z: depth bias; w: one texel in uv.
-    shadow: vec4<f32>,
-    // The penumbra map (core/src/render/penumbra.rs): x 1 when drawn this frame; y its grid
-    // size; z the shadow map's width (m); w the depth step of an edge (depth units).
-    penumbra: vec4<f32>,
+    // 1 when a shadow map was drawn this frame (0: nothing casts, every point is lit).
+    shadow_drawn: u32,
+    // How far receivers move their test point off the surface (m, half a texel).
+    shadow_normal_offset: f32,
+    // The depth bias (the map's depth units).
+    shadow_bias: f32,
+    // One texel of the map, in uv.
+    shadow_texel: f32,
+    // The penumbra map (core/src/render/passes/penumbra.rs): 1 when drawn this frame; its
+    // grid size; the shadow map's width at the casters (m); the depth step of an edge.
+    penumbra_drawn: u32,
+    penumbra_grid: f32,
+    shadow_width: f32,
+    edge_gap: f32,
 };
 
 @group(0) @binding(0) var<uniform> frame: FrameUniform;
@@ -47,8 +59,11 @@ struct Surface {
     // Where it was tested in the shadow map: uv, depth, and w 1 inside the map (0: outside,
     // or no map this frame).
     shadow_coord: vec4<f32>,
-    // Base colour (texture × factor), linear.
+    // Base colour (texture × factor), linear; a pigmented skin's albedo per texel.
     albedo: vec3<f32>,
+    // The albedo is the skin's pigment (its texel's albedo): the skin models render a medium
+    // whose diffuse reflectance is `albedo`; otherwise the medium's own.
+    pigmented: bool,
     // Material thickness through this point (m).
     thickness: f32,
     // Radius of curvature of the surface here (m); FLAT_RADIUS_M where unknown.
@@ -69,10 +84,10 @@ fn safe_normalize(v: vec3<f32>, fallback: vec3<f32>) -> vec3<f32> {
 // in the shadow map: uv, depth (beyond the far plane: at it), w 1 inside the map's frustum
 // (0 outside, or when no map was drawn this frame).
 fn shadow_coord(p: vec3<f32>, offset: vec3<f32>) -> vec4<f32> {
-    let q = frame.shadow_view_proj * vec4<f32>(p + offset * frame.shadow.y, 1.0);
+    let q = frame.shadow_view_proj * vec4<f32>(p + offset * frame.shadow_normal_offset, 1.0);
     let ndc = q.xyz / max(q.w, 1e-20);
     let uv = vec2<f32>(0.5 + 0.5 * ndc.x, 0.5 - 0.5 * ndc.y);
-    let inside = frame.shadow.x > 0.5 && q.w > 0.0 && all(uv >= vec2<f32>(0.0))
+    let inside = frame.shadow_drawn != 0u && q.w > 0.0 && all(uv >= vec2<f32>(0.0))
         && all(uv <= vec2<f32>(1.0));
     return vec4<f32>(uv, min(ndc.z, 1.0), select(0.0, 1.0, inside));
 }
@@ -83,7 +98,7 @@ fn light_visible_coord(c: vec4<f32>) -> f32 {
     if (c.w < 0.5) {
         return 1.0;
     }
-    return textureSampleCompareLevel(shadow_map, shadow_sampler, c.xy, c.z - frame.shadow.z);
+    return textureSampleCompareLevel(shadow_map, shadow_sampler, c.xy, c.z - frame.shadow_bias);
 }
 
 // The key light's visibility at `p`, moved off its surface by `offset` (see shadow_coord).
@@ -117,15 +132,16 @@ fn make_surface(pos: vec3<f32>, normal: vec3<f32>, tangent: vec4<f32>, albedo: v
     s.t = normalize(t);
     let handedness = select(1.0, -1.0, tangent.w < 0.0);
     s.b = cross(s.n, s.t) * handedness;
-    s.v = safe_normalize(frame.camera_pos.xyz - pos, s.n);
-    let to_light = frame.light_pos.xyz - pos;
+    s.v = safe_normalize(frame.camera_pos - pos, s.n);
+    let to_light = frame.light_pos - pos;
     s.light_dist = max(length(to_light), 1e-3);
     s.l = safe_normalize(to_light, s.n);
     s.albedo = albedo;
+    s.pigmented = false;
     s.thickness = max(thickness, 0.0);
     s.shadow_coord = entry_shadow_coord(pos, s.n, s.l, s.thickness);
     s.visibility = light_visible_coord(s.shadow_coord);
-    s.light = frame.light_pos.w * frame.light_color.rgb * s.visibility;
+    s.light = frame.light_intensity * frame.light_color * s.visibility;
     s.curvature_radius = FLAT_RADIUS_M;
     return s;
 }
@@ -133,20 +149,6 @@ fn make_surface(pos: vec3<f32>, normal: vec3<f32>, tangent: vec4<f32>, albedo: v
 // Irradiance at normal incidence from the point light (inverse square).
 fn irradiance(s: Surface) -> vec3<f32> {
     return s.light / (s.light_dist * s.light_dist);
-}
-
-// Cloth (and whatever else is not skin: hair, eyes), the same under every shading model: a
-// wrapped Lambert lobe (light wraps past the terminator as it does through fibres; the
-// (1 + w)² keeps its integral that of Lambert) brightened toward grazing views by a sheen
-// tinted by the fibres' colour (velvet-like), on the textured albedo.
-const CLOTH_WRAP: f32 = 0.3;
-const CLOTH_SHEEN: f32 = 0.5;
-
-fn cloth_radiance(s: Surface) -> vec3<f32> {
-    let wrapped = max(dot(s.n, s.l) + CLOTH_WRAP, 0.0) / ((1.0 + CLOTH_WRAP) * (1.0 + CLOTH_WRAP));
-    let g = 1.0 - max(dot(s.n, s.v), 0.0);
-    let brdf = INV_PI + CLOTH_SHEEN * g * g * g;
-    return s.albedo * (frame.ambient.rgb + irradiance(s) * wrapped * brdf);
 }
 
 // Narkowicz's fit of the ACES filmic curve.
@@ -163,11 +165,11 @@ fn srgb_encode(c: vec3<f32>) -> vec3<f32> {
 
 // Exposure, tone mapping and (where the target is not sRGB) the sRGB encode.
 fn finish(radiance: vec3<f32>) -> vec4<f32> {
-    if (frame.output.z > 0.5) {
+    if (frame.raw_output != 0u) {
         return vec4<f32>(radiance, 1.0);
     }
-    var c = tonemap(radiance * frame.output.x);
-    if (frame.output.y > 0.5) {
+    var c = tonemap(radiance * frame.exposure);
+    if (frame.srgb_encode != 0u) {
         c = srgb_encode(c);
     }
     return vec4<f32>(c, 1.0);

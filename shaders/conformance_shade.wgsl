@@ -42,6 +42,8 @@ fn conformance_shade(@builtin(global_invocation_id) id: vec3<u32>) {
     s.visibility = 1.0;
     s.shadow_coord = vec4<f32>(0.0);
     s.albedo = x.albedo.rgb;
+    // The f64 references shade the medium itself (no pigment).
+    s.pigmented = false;
     s.thickness = max(x.albedo.w, 0.0);
     conformance_out[2u * i] = vec4<f32>(shade(s), 0.0);
     conformance_out[2u * i + 1u] = vec4<f32>(conformance_probe(s, x.probe.x), 0.0);

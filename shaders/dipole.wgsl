@@ -61,5 +61,5 @@ fn shade(s: Surface) -> vec3<f32> {
     let eta = model.eta;
     let ft = fresnel_transmittance(eta, dot(s.n, s.l)) * fresnel_transmittance(eta, dot(s.n, s.v));
     let direct = s.light * dipole_profile(r) * (ft * INV_PI * model.area_mm2);
-    return frame.ambient.rgb * model.total + direct;
+    return frame.ambient * model.total + direct;
 }

@@ -59,7 +59,7 @@ fn shade(s: Surface) -> vec3<f32> {
     let e0 = irradiance(s);
     let diffuse = fd * tex * (model.rho_d * nl * e0 + translucency) * INV_PI;
     let specular = e0 * nl * ward_specular(s, model.rho_s, model.alpha_x, model.alpha_y);
-    let ambient = frame.ambient.rgb * fd * tex * model.rho_d;
+    let ambient = frame.ambient * fd * tex * model.rho_d;
     // As printed f_d can be negative (thick layers): radiance is clamped at 0.
     return max(ambient + diffuse + vec3<f32>(specular), vec3<f32>(0.0));
 }

@@ -1,4 +1,4 @@
-// The penumbra map (core/src/render/penumbra.rs): for every texel of a coarse grid over the
+// The penumbra map (core/src/render/passes/penumbra.rs): for every texel of a coarse grid over the
 // key light's shadow map, the nearest edge of a caster seen from the light — where its depth
 // steps back by more than a gap — and that caster's depth. A receiver reads it to know how far
 // it is from the nearest shadow edge, so a model can filter its shadow by the material's
@@ -12,9 +12,14 @@
 // Texel: xy the seed's position (uv of the map), z the caster's depth there, w 1 (0: none).
 
 struct Jump {
-    // x: this pass's step (grid texels); y: grid size; z: map texels per grid texel; w: the
-    // depth step that makes an edge (depth units).
-    step: vec4<f32>,
+    // This pass's step (grid texels; 0: the seed pass).
+    step: f32,
+    // The grid's size (texels per side).
+    grid: f32,
+    // Shadow-map texels per grid texel.
+    block: f32,
+    // The depth step that makes an edge (the map's depth units).
+    edge_gap: f32,
 };
 
 @group(0) @binding(0) var<uniform> jump: Jump;
@@ -37,10 +42,10 @@ fn widen(r: vec2<f32>, at: vec2<f32>) -> vec2<f32> {
 
 @fragment
 fn fs_seed(@builtin(position) at: vec4<f32>) -> @location(0) vec4<f32> {
-    let size = jump.step.y;
+    let size = jump.grid;
     let centre = at.xy / size;
     // 5×5 gathers two map texels apart: the 8×8 block and a one-texel border.
-    let step = vec2<f32>(2.0 / (size * jump.step.z));
+    let step = vec2<f32>(2.0 / (size * jump.block));
     var r = vec2<f32>(1.0, 0.0);
     r = widen(r, centre + vec2<f32>(-2.0, -2.0) * step);
     r = widen(r, centre + vec2<f32>(-1.0, -2.0) * step);
@@ -67,7 +72,7 @@ fn fs_seed(@builtin(position) at: vec4<f32>) -> @location(0) vec4<f32> {
     r = widen(r, centre + vec2<f32>(0.0, 2.0) * step);
     r = widen(r, centre + vec2<f32>(1.0, 2.0) * step);
     r = widen(r, centre + vec2<f32>(2.0, 2.0) * step);
-    if (r.y - r.x > jump.step.w) {
+    if (r.y - r.x > jump.edge_gap) {
         return vec4<f32>(centre, r.x, 1.0);
     }
     return vec4<f32>(0.0);
@@ -88,9 +93,9 @@ fn nearer(best: vec4<f32>, p: vec2<i32>, uv: vec2<f32>) -> vec4<f32> {
 
 @fragment
 fn fs_jump(@builtin(position) at: vec4<f32>) -> @location(0) vec4<f32> {
-    let step = i32(jump.step.x);
+    let step = i32(jump.step);
     let here = vec2<i32>(at.xy);
-    let uv = at.xy / jump.step.y;
+    let uv = at.xy / jump.grid;
     var best = vec4<f32>(0.0);
     best = nearer(best, here + vec2<i32>(-1, -1) * step, uv);
     best = nearer(best, here + vec2<i32>(0, -1) * step, uv);

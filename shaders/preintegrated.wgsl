@@ -5,24 +5,25 @@
 // kernel's Poisson height (the Poisson kernel is its own semigroup: blurring the irradiance of
 // a light at height h with a Poisson kernel of height s gives the light at height h + s).
 #import common
+#import consts
 #import subsurface
 
 @group(1) @binding(1) var lut: texture_2d<f32>;
 @group(1) @binding(2) var lut_sampler: sampler;
 
-// LUT rows (core/src/shading/preintegrated.rs): 32 rows of sphere response over
-// (n·l, curvature), then the exit/entry Fresnel factors over cos θ, then the backlit slab's
-// transmittance over log2(t/0.25 mm)/9, then the edge-spread function (log2) over the signed
-// distance to a shadow edge (core/src/shading/edge_spread.rs).
-const LUT_ROWS: f32 = 35.0;
-const CURVATURE_ROWS: f32 = 32.0;
-const PENUMBRA_ROW: f32 = 34.0;
-// The penumbra row spans ±PENUMBRA_SPAN_MM, quadratically in the distance.
-const PENUMBRA_SPAN_MM: f32 = 128.0;
-
+// LUT rows (core/src/shading/preintegrated.rs; their counts from `consts`): the sphere
+// response over (n·l, curvature), then the exit/entry Fresnel factors over cos θ, then the
+// backlit slab's transmittance over log2(t/SLAB_FIRST_MM)/LUT_SLAB_SPAN, then the
+// edge-spread function (log2) over the signed distance to a shadow edge
+// (core/src/shading/edge_spread.rs), spanning ±PENUMBRA_SPAN_MM quadratically.
 fn lut_row(u: f32, row: f32) -> vec4<f32> {
-    let u_tex = (clamp(u, 0.0, 1.0) * 63.0 + 0.5) / 64.0;
-    return textureSampleLevel(lut, lut_sampler, vec2<f32>(u_tex, (row + 0.5) / LUT_ROWS), 0.0);
+    let u_tex = (clamp(u, 0.0, 1.0) * (LUT_U - 1.0) + 0.5) / LUT_U;
+    return textureSampleLevel(lut, lut_sampler, vec2<f32>(u_tex, (row + 0.5) / LUT_TEXTURE_ROWS), 0.0);
+}
+
+// The slab row's coordinate for a thickness of `t_mm`.
+fn slab_u(t_mm: f32) -> f32 {
+    return log2(max(t_mm, SLAB_FIRST_MM) / SLAB_FIRST_MM) / LUT_SLAB_SPAN;
 }
 
 // The key light's visibility per channel. `v` is the shadow map's test at this point; near the
@@ -33,33 +34,33 @@ fn lut_row(u: f32, row: f32) -> vec4<f32> {
 fn penumbra(s: Surface, v: f32) -> vec3<f32> {
     let nl = dot(s.n, s.l);
     let c = s.shadow_coord;
-    if (frame.penumbra.x < 0.5 || nl <= 0.0 || c.w < 0.5) {
+    if (frame.penumbra_drawn == 0u || nl <= 0.0 || c.w < 0.5) {
         return vec3<f32>(v);
     }
-    let grid = frame.penumbra.y;
+    let grid = frame.penumbra_grid;
     let cell = vec2<i32>(min(c.xy * grid, vec2<f32>(grid - 1.0)));
     let seed = textureLoad(penumbra_map, cell, 0);
-    if (seed.w < 0.5 || seed.z >= c.z - frame.penumbra.w) {
+    if (seed.w < 0.5 || seed.z >= c.z - frame.edge_gap) {
         return vec3<f32>(v);
     }
     // Across the light's image plane, stretched onto the surface by the incidence.
-    let to_mm = frame.penumbra.z * 1000.0 / max(nl, 0.25);
-    let texel_mm = frame.shadow.w * to_mm;
+    let to_mm = frame.shadow_width * 1000.0 / max(nl, 0.25);
+    let texel_mm = frame.shadow_texel * to_mm;
     var d = select(-1.0, 1.0, v >= 0.5) * max(length(seed.xy - c.xy) * to_mm, 0.5 * texel_mm);
     if (v > 0.0 && v < 1.0) {
         // The bilinear test ramps over one texel.
         d = (v - 0.5) * texel_mm;
     }
     let t = sign(d) * sqrt(min(abs(d) / PENUMBRA_SPAN_MM, 1.0));
-    return exp2(lut_row(0.5 * (t + 1.0), PENUMBRA_ROW).rgb);
+    return exp2(lut_row(0.5 * (t + 1.0), LUT_PENUMBRA_ROW).rgb);
 }
 
 fn shade(s: Surface) -> vec3<f32> {
-    let exit = lut_row(dot(s.n, s.v), CURVATURE_ROWS).r;
+    let exit = lut_row(dot(s.n, s.v), LUT_CURVATURE_ROWS).r;
     // Curvature axis: v = R0 / (R0 + ρ), within the curvature rows.
     let rho_mm = s.curvature_radius * 1000.0;
     let v = model.lut_r0_mm / (model.lut_r0_mm + rho_mm);
-    let v_tex = min(v * CURVATURE_ROWS, CURVATURE_ROWS - 0.5) / LUT_ROWS;
+    let v_tex = min(v * LUT_CURVATURE_ROWS, LUT_CURVATURE_ROWS - 0.5) / LUT_TEXTURE_ROWS;
     // The light lifted by each channel's Poisson height s_c: its distance² over the tangent
     // plane, d² + 2 h s_c + s_c² (h its height, mm), scales each channel's irradiance; one
     // fetch at the cosine of the light lifted by the channels' mean height serves all three.
@@ -79,16 +80,18 @@ fn shade(s: Surface) -> vec3<f32> {
     // curvature implies (an ear, a finger) adds the difference of the two slabs.
     let back = max(-dot(s.n, s.l), 0.0);
     let path = s.thickness * model.mm_per_m * back;
-    let entry = lut_row(back, CURVATURE_ROWS).g;
-    let slab = lut_row(log2(max(path, 0.25) / 0.25) / 9.0, CURVATURE_ROWS + 1.0).rgb;
-    let ball = lut_row(log2(max(2.0 * rho_mm * back, 0.25) / 0.25) / 9.0, CURVATURE_ROWS + 1.0).rgb;
+    let entry = lut_row(back, LUT_CURVATURE_ROWS).g;
+    let slab = lut_row(slab_u(path), LUT_CURVATURE_ROWS + 1.0).rgb;
+    let ball = lut_row(slab_u(2.0 * rho_mm * back), LUT_CURVATURE_ROWS + 1.0).rgb;
     let through = back * entry * max(slab - ball, vec3<f32>(0.0));
-    let ambient = PI * frame.ambient.rgb * model.albedo;
+    let ambient = PI * frame.ambient * model.uniform_albedo;
     // The light before its shadow test (s.light carries the hard test), so the response
     // can take the penumbra's per-channel visibility instead; translucency keeps the hard
     // test, made where it enters on the far side.
-    let full = select(s.light, frame.light_pos.w * frame.light_color.rgb, frame.shadow.x > 0.5);
+    let full = select(s.light, frame.light_intensity * frame.light_color, frame.shadow_drawn != 0u);
     let e_full = full / (s.light_dist * s.light_dist);
     let lit = penumbra(s, s.visibility);
-    return exit * (ambient + e_full * response * lit + irradiance(s) * through);
+    // A pigmented texel: its factor in and out (one pass sees only this texel).
+    let t = sss_pigment(s);
+    return exit * t * t * (ambient + e_full * response * lit + irradiance(s) * through);
 }

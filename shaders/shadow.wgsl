@@ -54,8 +54,10 @@ fn blob_factor(in: VertexOut) -> f32 {
 #ifdef SCREEN_SPACE
 struct SplitOut {
     @location(0) colour: vec4<f32>,
-    // Write-masked off: the spread irradiance stays as the scene wrote it.
+    // Write-masked off: the spread irradiance and the exit factor stay as the scene wrote
+    // them.
     @location(1) spread: vec4<f32>,
+    @location(2) exit: vec4<f32>,
 };
 
 @fragment
@@ -67,6 +69,7 @@ fn fs_main(in: VertexOut) -> SplitOut {
     // governor moves between a screen-space and a one-pass model.
     out.colour = vec4<f32>(vec3<f32>(pow(blob_factor(in), 0.7)), 1.0);
     out.spread = vec4<f32>(1.0);
+    out.exit = vec4<f32>(1.0);
     return out;
 }
 #else

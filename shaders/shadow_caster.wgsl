@@ -1,4 +1,4 @@
-// The key light's shadow map (core/src/render/shadow_map.rs): casters drawn depth-only from
+// The key light's shadow map (core/src/render/passes/shadow_map.rs): casters drawn depth-only from
 // the light. The skinned character through its joint palette; a measurement scene's occluder
 // as world-space triangles.
 #import skinning

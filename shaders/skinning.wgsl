@@ -1,9 +1,8 @@
-// Linear blend skinning with a joint palette of at most 256 matrices (16 KiB: fits the
+// Linear blend skinning with a joint palette of at most MAX_JOINTS matrices (256: 16 KiB, the
 // GLES3 minimum uniform block size). palette[j] = jointWorld[j] · inverseBind[j].
+#import consts
 
-const MAX_JOINTS: u32 = 256u;
-
-@group(2) @binding(0) var<uniform> palette: array<mat4x4<f32>, 256>;
+@group(2) @binding(0) var<uniform> palette: array<mat4x4<f32>, MAX_JOINTS>;
 
 fn skin_matrix(joints: vec4<u32>, weights: vec4<f32>) -> mat4x4<f32> {
     let j = min(joints, vec4<u32>(MAX_JOINTS - 1u));

@@ -9,29 +9,42 @@
 // own size in mm (written by the character pass). A sample that is off screen, not skin, or
 // at another depth (its pixel size differs by more than `depth_tolerance`) counts as the
 // centre pixel: energy stays where the surface is. Output: radiance that stayed + exit ·
-// exitance, then exposure, tone mapping and encoding as every other pass.
-// Driver: core/src/render/sss_pass.rs.
+// exitance (the exit factor per channel, from its own target: the pigment's way out), then
+// exposure, tone mapping and encoding as every other pass.
+// Driver: core/src/render/passes/subsurface.rs.
 #import common
 
-// `subsurface::MAX_RINGS` in Rust: the layout test compares `KernelUniform`'s size.
-const MAX_RINGS: u32 = 24u;
+#import consts
+
+// One ring of the kernel: its mass per channel and its outer radius (mm). Ring k starts where
+// ring k − 1 ends, ring 0 at the centre's radius.
+struct Ring {
+    mass: vec3<f32>,
+    outer_mm: f32,
+};
 
 struct KernelUniform {
-    // x: rings used, y: angles per ring, z: depth tolerance (relative pixel size), w: unused.
-    counts: vec4<f32>,
+    // Rings used, directions sampled per ring, and how far a sample's pixel size may differ
+    // from the centre's (relative) and still count as the same surface.
+    ring_count: u32,
+    angles: u32,
+    depth_tolerance: f32,
+    _pad0: f32,
     // The clear colour as displayed: where nothing was drawn (colour alpha < 0).
     background: vec4<f32>,
-    // rgb: mass of the inner disk (taken at the pixel); w: its radius (mm).
-    centre: vec4<f32>,
-    // rgb: mass of ring k; w: its outer radius (mm). Ring k starts where ring k − 1 ends, ring 0
-    // at `centre.w`.
-    rings: array<vec4<f32>, MAX_RINGS>,
+    // The inner disk (taken at the pixel): its mass and radius (mm).
+    centre_mass: vec3<f32>,
+    centre_radius_mm: f32,
+    rings: array<Ring, MAX_RINGS>,
 };
 
 @group(1) @binding(0) var<uniform> kernel: KernelUniform;
 @group(1) @binding(1) var colour_tex: texture_2d<f32>;
 @group(1) @binding(2) var spread_tex: texture_2d<f32>;
 @group(1) @binding(3) var spread_sampler: sampler;
+// The exit factor per channel (pigment included): what turns the gathered exitance into
+// radiance toward the viewer.
+@group(1) @binding(4) var exit_tex: texture_2d<f32>;
 
 struct VertexOut {
     @builtin(position) clip: vec4<f32>,
@@ -74,22 +87,22 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
         return finish(colour.rgb);
     }
     let px_per_mm = 1.0 / centre.a;
-    let rings = min(u32(kernel.counts.x), MAX_RINGS);
-    let angles = max(u32(kernel.counts.y), 1u);
+    let rings = min(kernel.ring_count, MAX_RINGS);
+    let angles = max(kernel.angles, 1u);
     let step = 6.28318530717959 / f32(angles);
-    var m = kernel.centre.rgb * centre.rgb;
-    var inner = kernel.centre.w;
+    var m = kernel.centre_mass * centre.rgb;
+    var inner = kernel.centre_radius_mm;
     let pixel = vec2<u32>(p);
     let turn = hash(pixel, 0u) * step;
     for (var k = 0u; k < rings; k = k + 1u) {
         let ring = kernel.rings[k];
-        let outer = ring.w;
+        let outer = ring.outer_mm;
         let u = hash(pixel, k + 1u);
         let r_mm = sqrt(inner * inner + u * (outer * outer - inner * inner));
         inner = outer;
         let r_px = r_mm * px_per_mm;
         if (r_px < 0.5) {
-            m = m + ring.rgb * centre.rgb;
+            m = m + ring.mass * centre.rgb;
             continue;
         }
         var sum = vec3<f32>(0.0);
@@ -99,13 +112,13 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
             var e = centre.rgb;
             if (all(at >= vec2<f32>(0.0)) && all(at < size)) {
                 let s = textureSampleLevel(spread_tex, spread_sampler, at / size, 0.0);
-                if (s.a > 0.0 && abs(s.a - centre.a) <= kernel.counts.z * centre.a) {
+                if (s.a > 0.0 && abs(s.a - centre.a) <= kernel.depth_tolerance * centre.a) {
                     e = s.rgb;
                 }
             }
             sum = sum + e;
         }
-        m = m + ring.rgb * sum / f32(angles);
+        m = m + ring.mass * sum / f32(angles);
     }
-    return finish(colour.rgb + colour.a * m);
+    return finish(colour.rgb + textureLoad(exit_tex, p, 0).rgb * m);
 }

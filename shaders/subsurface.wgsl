@@ -1,11 +1,14 @@
 // Shared by the spatial subsurface models (`tabulated`, `burley`, `preintegrated`): their one
-// uniform layout, the oblique-incidence and translucency tables, the exit distribution.
+// uniform layout, the oblique-incidence and translucency tables, the exit distribution; and
+// the screen-space models' whole shader (composed with SCREEN_SPACE: `burley` and `tabulated`
+// differ only in their constants and kernel, not in code).
 // CPU twin: core/src/shading/subsurface.rs (`Params`, `split`, `translucency`).
 //
 // Units: the tables are per unit incident power; thickness in mm; lengths on the surface in mm.
 // Exitance M leaves the smooth boundary with the radiance M · F_t(η, n·v) / (π C(η)),
 // C(η) = ∫ F_t(η, μ) 2μ dμ, so the radiance integrates back to M over the hemisphere.
 #import common
+#import consts
 #import fresnel
 
 // Declared once, in core/src/shading/subsurface.rs (`SubsurfaceUniform`): the same members in
@@ -27,13 +30,18 @@ struct SubsurfaceUniform {
     // 1 for models with translucency (their composition sets TRANSLUCENCY; read by the f64
     // twin).
     translucent: f32,
-    // rgb: q(μ_k) = R(μ_k)/R(1), μ_k = (k/6)² (tables are linear in √μ): oblique incidence
-    // relative to normal, per channel.
-    oblique: array<vec4<f32>, 7>,
-    // rgb: ln of the diffuse transmittance of a slab 0.25 · 2^k mm thick lit from behind.
-    slab: array<vec4<f32>, 7>,
+    // The medium's diffuse reflectance under uniform light as the model renders it: what
+    // ambient light reflects with, and what a pigment's albedo is relative to.
+    uniform_albedo: vec3<f32>,
+    _pad0: f32,
+    // rgb: q(μ_k) = R(μ_k)/R(1), μ_k = (k/(OBLIQUE_NODES − 1))² (tables are linear in √μ):
+    // oblique incidence relative to normal, per channel.
+    oblique: array<vec4<f32>, OBLIQUE_NODES>,
+    // rgb: ln of the diffuse transmittance of a slab SLAB_FIRST_MM · 2^k mm thick lit from
+    // behind.
+    slab: array<vec4<f32>, SLAB_NODES>,
     // rgb: δ(μ_k) (mm): how far forward light entering at μ_k leaves, per channel.
-    shift: array<vec4<f32>, 7>,
+    shift: array<vec4<f32>, OBLIQUE_NODES>,
 };
 
 @group(1) @binding(0) var<uniform> model: SubsurfaceUniform;
@@ -44,19 +52,29 @@ struct SubsurfaceUniform {
 struct Split {
     local: vec3<f32>,
     spread: vec3<f32>,
-    exit: f32,
+    exit: vec3<f32>,
 };
 
+// A pigmented texel's factor T per channel (1 without a pigment): a thin absorbing layer over
+// the medium, crossed once on the way in and once on the way out, T² = A / the medium's own
+// reflectance under uniform light, so uniform light returns the texel's albedo A.
+fn sss_pigment(s: Surface) -> vec3<f32> {
+    if (!s.pigmented) {
+        return vec3<f32>(1.0);
+    }
+    return sqrt(max(s.albedo, vec3<f32>(0.0)) / max(model.uniform_albedo, vec3<f32>(1e-6)));
+}
+
 fn sss_oblique(mu: f32) -> vec3<f32> {
-    let x = sqrt(clamp(mu, 0.0, 1.0)) * 6.0;
-    let i = min(u32(x), 5u);
+    let x = sqrt(clamp(mu, 0.0, 1.0)) * f32(OBLIQUE_NODES - 1u);
+    let i = min(u32(x), OBLIQUE_NODES - 2u);
     let f = x - f32(i);
     return mix(model.oblique[i].rgb, model.oblique[i + 1u].rgb, f);
 }
 
 fn sss_shift(mu: f32) -> vec3<f32> {
-    let x = sqrt(clamp(mu, 0.0, 1.0)) * 6.0;
-    let i = min(u32(x), 5u);
+    let x = sqrt(clamp(mu, 0.0, 1.0)) * f32(OBLIQUE_NODES - 1u);
+    let i = min(u32(x), OBLIQUE_NODES - 2u);
     let f = x - f32(i);
     return mix(model.shift[i].rgb, model.shift[i + 1u].rgb, f);
 }
@@ -64,8 +82,9 @@ fn sss_shift(mu: f32) -> vec3<f32> {
 // dδ/dμ of the shift table (linear in √μ: dδ/dμ = dδ/d√μ / (2√μ)).
 fn sss_shift_slope(mu: f32) -> vec3<f32> {
     let q = sqrt(clamp(mu, 0.0, 1.0));
-    let i = min(u32(q * 6.0), 5u);
-    return (model.shift[i + 1u].rgb - model.shift[i].rgb) * 6.0 / (2.0 * max(q, 1e-3));
+    let steps = f32(OBLIQUE_NODES - 1u);
+    let i = min(u32(q * steps), OBLIQUE_NODES - 2u);
+    return (model.shift[i + 1u].rgb - model.shift[i].rgb) * steps / (2.0 * max(q, 1e-3));
 }
 
 // The irradiance each channel spreads, weighted by q(μ): taken where the light that leaves
@@ -109,15 +128,17 @@ fn sss_exit(s: Surface) -> f32 {
 
 #ifdef TRANSLUCENCY
 // Diffuse transmittance through `t_mm` of material: the table holds ln T at thicknesses
-// log-spaced 0.25 · 2^k mm, interpolated linearly (T falls off exponentially); past the
-// thickest node ln T goes on at the slope of the last interval (8 mm wide).
+// log-spaced SLAB_FIRST_MM · 2^k mm, interpolated linearly (T falls off exponentially); past
+// the thickest node ln T goes on at the slope of the last interval (half that node wide).
 fn sss_slab(t_mm: f32) -> vec3<f32> {
-    let x = log2(max(t_mm, 0.25) / 0.25);
-    if (x >= 6.0) {
-        let slope = (model.slab[6].rgb - model.slab[5].rgb) / 8.0;
-        return exp(model.slab[6].rgb + slope * (t_mm - 16.0));
+    let last = SLAB_NODES - 1u;
+    let x = log2(max(t_mm, SLAB_FIRST_MM) / SLAB_FIRST_MM);
+    if (x >= f32(last)) {
+        let thickest = SLAB_FIRST_MM * exp2(f32(last));
+        let slope = (model.slab[last].rgb - model.slab[last - 1u].rgb) / (0.5 * thickest);
+        return exp(model.slab[last].rgb + slope * (t_mm - thickest));
     }
-    let i = min(u32(x), 5u);
+    let i = min(u32(x), last - 1u);
     return exp(mix(model.slab[i].rgb, model.slab[i + 1u].rgb, x - f32(i)));
 }
 
@@ -139,12 +160,18 @@ fn sss_translucency(s: Surface) -> vec3<f32> {
 #endif
 }
 
+// The medium at a pixel: radiance that stays (ambient, translucency), irradiance to spread
+// and the exit factor; the pigment taken in with the spread irradiance and out with what
+// leaves (what stays crosses this texel's layer both ways).
 fn sss_split(s: Surface) -> Split {
     var out: Split;
-    out.exit = sss_exit(s);
-    out.spread = sss_spread(s);
-    // Ambient: uniform radiance L_a gives irradiance π L_a, reflected with the medium's albedo.
-    out.local = out.exit * (PI * frame.ambient.rgb * model.albedo + sss_translucency(s));
+    let t = sss_pigment(s);
+    let exit = sss_exit(s);
+    out.exit = exit * t;
+    out.spread = sss_spread(s) * t;
+    // Ambient: uniform radiance L_a gives irradiance π L_a, reflected with the medium's
+    // reflectance under uniform light.
+    out.local = exit * t * t * (PI * frame.ambient * model.uniform_albedo + sss_translucency(s));
     return out;
 }
 
@@ -154,3 +181,15 @@ fn sss_local(s: Surface) -> vec3<f32> {
     let p = sss_split(s);
     return p.local + p.exit * model.albedo * p.spread;
 }
+
+#ifdef SCREEN_SPACE
+// The screen-space models (`burley`, `tabulated`: this module is theirs, their uniform and
+// kernel their own): the split the subsurface pass spreads, and the pixel on its own.
+fn shade_split(s: Surface) -> Split {
+    return sss_split(s);
+}
+
+fn shade(s: Surface) -> vec3<f32> {
+    return sss_local(s);
+}
+#endif

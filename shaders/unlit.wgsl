@@ -1,5 +1,4 @@
-// Baseline for cost ratios: the texture colour on the skin, no lighting (the cloth, as under
-// every model, gets the cloth BRDF of common.wgsl).
+// Baseline for cost ratios: the skin's albedo, no lighting.
 #import common
 
 struct ModelParams {

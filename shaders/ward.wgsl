@@ -14,9 +14,11 @@ struct WardUniform {
     rho_s: f32,
     alpha_x: f32,
     alpha_y: f32,
+    // The paper's sliders (§3.1).
+    slider_diffuse: f32,
+    slider_ambient: f32,
+    slider_specular: f32,
     _pad0: f32,
-    // The paper's sliders: x diffuse, y ambient, z specular.
-    sliders: vec3<f32>,
     _pad1: f32,
 };
 
@@ -25,11 +27,11 @@ struct WardUniform {
 fn shade(s: Surface) -> vec3<f32> {
     let tex = select(vec3<f32>(1.0), s.albedo, model.textured > 0.5);
     let kd = model.rho_d * tex;
-    let ambient = frame.ambient.rgb * kd * model.sliders.y;
+    let ambient = frame.ambient * kd * model.slider_ambient;
     let nl = dot(s.n, s.l);
     if (nl <= 0.0) {
         return ambient;
     }
     let spec = ward_specular(s, model.rho_s, model.alpha_x, model.alpha_y);
-    return ambient + irradiance(s) * nl * (kd * INV_PI * model.sliders.x + vec3<f32>(spec * model.sliders.z));
+    return ambient + irradiance(s) * nl * (kd * INV_PI * model.slider_diffuse + vec3<f32>(spec * model.slider_specular));
 }

@@ -6,10 +6,12 @@ use std::path::Path;
 use dermis_core::anim::Pose;
 use dermis_core::camera::FollowCamera;
 use dermis_core::render::{
-    DrawSet, FrameOutput, FrameView, FrameWork, Gpu, Light, RenderStats, Renderer, CHARACTER,
-    EXPOSURE,
+    FrameOutput, FrameWork, Gpu, PassCtx, PreparedFrame, RenderStats, Renderer,
 };
-use dermis_core::scene::{posed_bounds, showroom, SceneAssets};
+use dermis_core::scene::{
+    posed_bounds, showroom, DrawSet, FramePacket, FrameView, Light, PropInstance, Roles,
+    SceneAssets, SubjectPose, CHARACTER, EXPOSURE,
+};
 use dermis_core::shading::{material::PRESETS, Material, ShadingModel};
 use glam::{Mat4, Quat, Vec3};
 
@@ -29,6 +31,8 @@ pub struct Demo {
     /// Uniform scale applied to the character (external models come in other units).
     pub scale: f32,
     pub light: Light,
+    /// The showroom's props around the character.
+    pub props: Vec<PropInstance>,
 }
 
 impl Demo {
@@ -66,19 +70,17 @@ impl Demo {
             height: raw_height * scale,
             scale,
             light: Light::default(),
+            props: showroom(),
         })
     }
 
     /// Uploads everything to the GPU (once).
     pub fn upload(&self, gpu: &Gpu, renderer: &mut Renderer) -> Result<(), String> {
-        renderer.load_scene(
-            gpu,
-            &self.assets.character,
-            &self.assets.props,
-            &self.material,
-        )?;
-        renderer.set_props(&gpu.queue, &showroom());
-        Ok(())
+        let roles = Roles {
+            optics: self.material.clone(),
+            ..self.assets.roles.clone()
+        };
+        renderer.load_scene(gpu, (&self.assets.character, &roles), &self.assets.props)
     }
 
     pub fn clip_count(&self) -> usize {
@@ -121,10 +123,25 @@ impl Demo {
         }
     }
 
-    /// Writes this frame's uniforms and palettes.
-    pub fn prepare(&self, gpu: &Gpu, renderer: &mut Renderer, aspect: f32) {
-        renderer.update_character(&gpu.queue, &self.assets.character, &self.pose, self.world());
-        renderer.prepare(&gpu.queue, &self.frame_view(aspect));
+    /// This frame's packet for a target of `viewport` pixels: the character posed and placed,
+    /// the showroom's props, the follow camera.
+    pub fn packet(&self, viewport: (u32, u32)) -> FramePacket<'_> {
+        let aspect = viewport.0 as f32 / viewport.1.max(1) as f32;
+        let draw = DrawSet {
+            shading: Some(self.shading),
+            character: true,
+            props: true,
+            ui: false,
+        };
+        FramePacket {
+            subject: Some(SubjectPose {
+                model: &self.assets.character,
+                pose: &self.pose,
+                world: self.world(),
+            }),
+            props: Some(&self.props),
+            ..FramePacket::new(viewport, self.frame_view(aspect), draw)
+        }
     }
 
     pub fn next_material(&mut self) {
@@ -132,7 +149,7 @@ impl Demo {
             .iter()
             .position(|m| m.name == self.material.name)
             .unwrap_or(0);
-        self.material = PRESETS[(i + 1) % PRESETS.len()];
+        self.material = PRESETS[(i + 1) % PRESETS.len()].clone();
     }
 
     pub fn title(&self) -> String {
@@ -152,31 +169,36 @@ pub type AfterEncode<'h> = dyn FnMut(&mut wgpu::CommandEncoder, &FrameOutput<'_>
 pub struct DemoFrame<'a> {
     pub demo: &'a mut Demo,
     pub renderer: &'a mut Renderer,
-    pub gpu: &'a Gpu,
     pub after_encode: Option<&'a mut AfterEncode<'a>>,
-    aspect: f32,
+    viewport: (u32, u32),
+    frame: Option<PreparedFrame>,
 }
 
 impl<'a> DemoFrame<'a> {
-    pub fn new(demo: &'a mut Demo, renderer: &'a mut Renderer, gpu: &'a Gpu) -> Self {
+    pub fn new(demo: &'a mut Demo, renderer: &'a mut Renderer) -> Self {
         Self {
             demo,
             renderer,
-            gpu,
             after_encode: None,
-            aspect: 1.0,
+            viewport: (1, 1),
+            frame: None,
         }
     }
 }
 
 impl FrameWork for DemoFrame<'_> {
-    fn update(&mut self, dt: f64, width: u32, height: u32) {
-        self.demo.update(dt as f32);
-        self.aspect = width as f32 / height.max(1) as f32;
+    fn resize(&mut self, gpu: &Gpu, width: u32, height: u32) {
+        self.renderer.resize(gpu, (width, height));
     }
 
-    fn upload(&mut self, _queue: &wgpu::Queue) {
-        self.demo.prepare(self.gpu, self.renderer, self.aspect);
+    fn update(&mut self, dt: f64, width: u32, height: u32) {
+        self.demo.update(dt as f32);
+        self.viewport = (width, height);
+    }
+
+    fn upload(&mut self, gpu: &Gpu) {
+        let packet = self.demo.packet(self.viewport);
+        self.frame = Some(self.renderer.prepare(gpu, &packet));
     }
 
     fn encode(
@@ -184,14 +206,18 @@ impl FrameWork for DemoFrame<'_> {
         encoder: &mut wgpu::CommandEncoder,
         output: &FrameOutput<'_>,
     ) -> RenderStats {
-        let draw = DrawSet {
-            shading: Some(self.demo.shading),
-            character: true,
-            props: true,
+        let Some(frame) = &self.frame else {
+            return RenderStats::default();
         };
-        let stats = self
-            .renderer
-            .encode(encoder, output.targets, output.view, draw, None, None);
+        let stats = self.renderer.encode(
+            frame,
+            &mut PassCtx {
+                encoder,
+                targets: output.targets,
+                output: output.view,
+                timer: None,
+            },
+        );
         if let Some(hook) = &mut self.after_encode {
             hook(encoder, output);
         }

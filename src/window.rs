@@ -44,6 +44,8 @@ struct Graphics {
     target: SurfaceTarget,
     gpu: Gpu,
     driver: FrameDriver,
+    /// The pipeline cache was saved once everything loaded (again at exit).
+    cache_saved: bool,
 }
 
 struct App {
@@ -204,6 +206,7 @@ impl App {
             target,
             gpu,
             driver,
+            cache_saved: false,
         });
         Ok(())
     }
@@ -240,7 +243,7 @@ impl App {
                 "n" => {
                     demo.next_material();
                     if let (Some(r), Some(g)) = (renderer, &self.graphics) {
-                        r.set_material(&g.gpu.queue, &demo.material);
+                        r.set_material(&g.gpu, &demo.material);
                     }
                 }
                 "c" => {
@@ -290,7 +293,7 @@ impl App {
                 demo,
                 renderer: Some(r),
             } => {
-                let mut frame = DemoFrame::new(demo, r, &g.gpu);
+                let mut frame = DemoFrame::new(demo, r);
                 frame.after_encode = Some(&mut record);
                 g.driver.frame(&g.gpu, output, &mut frame)
             }
@@ -303,6 +306,13 @@ impl App {
             Err(_) => return Ok(()),
         }
         self.frames += 1;
+        // Every pipeline built: their cache is saved now, not only at exit (a crash, a kill).
+        if let Mode::Game { gpu: Some(gg), .. } = &self.mode {
+            if !g.cache_saved && gg.loaded() {
+                g.gpu.save_pipeline_cache();
+                g.cache_saved = true;
+            }
+        }
         if let (Some(path), Some(pending)) = (&self.args.screenshot, shot) {
             screenshot::save(&g.gpu, &pending, path)?;
             println!("{}: frame {}", path.display(), self.frames);

@@ -123,6 +123,11 @@ const EXCEPTIONS: &[(&str, &str, &str)] = &[
         "the Game Loop scenarios 1 and 3 run the paper's OSS by the published protocol",
     ),
     (
+        "core/src/shader/consts.rs",
+        "preintegrated",
+        "the shaders' copy of the LUT's layout (rows, width, slab span), written once in its file",
+    ),
+    (
         "measure/src/lut.rs",
         "preintegrated",
         "the LUT model's offline bake (Monte Carlo spheres; not linked into the APK)",
@@ -166,13 +171,16 @@ fn no_source_outside_a_models_place_names_it() {
     for m in ShadingModel::ALL {
         let d = m.descriptor();
         let own = |f: &str| {
-            f == format!("core/src/shading/{}.rs", d.module) || f == "core/src/shading/mod.rs"
+            f == format!("core/src/shading/{}.rs", d.module)
+                || f == format!("core/src/shading/{}.rs", d.name)
+                || f == "core/src/shading/mod.rs"
         };
         let variant = format!("ShadingModel::{m:?}");
         // The paper's closed-form models share analytic functions (Ward's lobe in OSS, the
         // dipole's R_d as Ward's diffuse, their nondimensional kernels in the conformance
-        // suite); every other model's module path names it too.
-        let shares_code = ["ward", "dipole", "oss"].contains(&d.module);
+        // suite), and the spatial models the `subsurface` module (their uniform and kernel,
+        // the screen-space models' WGSL); every other model's module path names it too.
+        let shares_code = ["ward", "dipole", "oss", "subsurface"].contains(&d.module);
         let path = format!("{}::", d.module);
         for (f, code) in &sources {
             if own(f) {

@@ -12,10 +12,8 @@ use common::Rig;
 use dermis_core::app::Key;
 use dermis_core::camera::look_at;
 use dermis_core::governor::GovernorConfig;
-use dermis_core::render::{
-    key_light, FrameView, Gpu, RgbaImage, EXPOSURE, OFFSCREEN_FORMAT, SHADOW_MAP_SIZE,
-};
-use dermis_core::scene::SceneAssets;
+use dermis_core::render::{Gpu, RgbaImage, OFFSCREEN_FORMAT, SHADOW_MAP_SIZE};
+use dermis_core::scene::{key_light, FrameView, SceneAssets, EXPOSURE};
 use dermis_core::shading::ShadingModel;
 use glam::{Mat4, Vec3, Vec4Swizzles};
 
@@ -44,7 +42,7 @@ fn blob_rig(model: ShadingModel) -> Rig {
 impl Rig {
     /// The test's own camera, behind, beside and above the feet (whatever the game's screens
     /// do with theirs): (view-projection, eye).
-    fn camera(&self) -> (Mat4, Vec3) {
+    fn test_camera(&self) -> (Mat4, Vec3) {
         let feet = self.feet();
         let eye = feet + Vec3::new(0.8, 2.0, -2.8);
         let m = look_at(
@@ -56,22 +54,21 @@ impl Rig {
         (m, eye)
     }
 
-    /// Advances one 60 Hz frame and uploads it, seen from [`Self::camera`].
+    /// Advances one 60 Hz frame and prepares it, seen from [`Self::camera`].
     fn step(&mut self) {
-        self.update(1.0 / 60.0);
-        let (view_proj, camera_pos) = self.camera();
-        self.gg.renderer.prepare(
-            &self.gpu.queue,
-            &FrameView {
-                view_proj,
-                camera_pos,
-                light: key_light(self.feet()),
-                exposure: EXPOSURE,
-            },
-        );
+        self.session
+            .update(1.0 / 60.0, &self.assets.character, self.viewport());
+        let (view_proj, camera_pos) = self.test_camera();
+        self.camera = Some(FrameView {
+            view_proj,
+            camera_pos,
+            light: key_light(self.feet()),
+            exposure: EXPOSURE,
+        });
+        self.prepare(|_| {});
     }
 
-    /// The uploaded frame (without the UI), shadows on or off, the character drawn or not.
+    /// The prepared frame (without the UI), shadows on or off, the character drawn or not.
     fn shoot(&mut self, shadows: bool, character: bool) -> RgbaImage {
         self.gg.renderer.set_blob_shadows(shadows);
         let image = self.shoot_frame(character);
@@ -81,7 +78,7 @@ impl Rig {
 
     /// The pixel where the world point `p` lands this frame.
     fn pixel(&self, p: Vec3) -> (u32, u32) {
-        let clip = self.camera().0 * p.extend(1.0);
+        let clip = self.test_camera().0 * p.extend(1.0);
         let ndc = clip.xy() / clip.w;
         let x = ((ndc.x + 1.0) * 0.5 * W as f32) as u32;
         let y = ((1.0 - ndc.y) * 0.5 * H as f32) as u32;
@@ -253,7 +250,8 @@ fn a_jumping_runners_blob_is_lighter_than_a_standing_ones() {
 /// variant only in a renderer that has the subsurface pass.
 #[test]
 fn blob_pipelines_exist_only_when_something_casts() {
-    use dermis_core::render::{LiveObjects, PipelineSet, PropKind, Renderer};
+    use dermis_core::render::{LiveObjects, PipelineSet, Renderer};
+    use dermis_core::scene::PropKind;
     let gpu = Gpu::headless().unwrap_or_else(|e| panic!("{e}"));
     let assets = SceneAssets::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("assets"), None)
         .unwrap_or_else(|e| panic!("{e}"));
@@ -275,13 +273,8 @@ fn blob_pipelines_exist_only_when_something_casts() {
     };
     for (set, built) in [(PipelineSet::game(), 2), (one_pass, 1)] {
         let mut r = Renderer::with_pipelines(&gpu, OFFSCREEN_FORMAT, &set);
-        r.load_scene(
-            &gpu,
-            &assets.character,
-            &assets.props,
-            &dermis_core::shading::material::SKIN1,
-        )
-        .unwrap();
+        r.load_scene(&gpu, (&assets.character, &assets.roles), &assets.props)
+            .unwrap();
         let before = pipelines();
         assert!(r.enable_blob_shadows(&gpu) && r.blob_shadows());
         assert_eq!(pipelines() - before, built, "{set:?}");

@@ -6,12 +6,13 @@
 use std::path::Path;
 use std::process::Command;
 
-use dermis_core::app::{GameGpu, Session, Viewport};
+use dermis_core::app::{GameFrame, GameGpu, Session};
 use dermis_core::lifecycle::{Action, Event, Lifecycle};
-use dermis_core::render::{FrameStatus, Gpu, LiveObjects, Offscreen, OFFSCREEN_FORMAT};
+use dermis_core::render::{
+    Clock, FrameDriver, FrameStatus, Gpu, LiveObjects, Offscreen, Output, OFFSCREEN_FORMAT,
+};
 use dermis_core::scene::SceneAssets;
 use dermis_core::shading::ShadingModel;
-use dermis_core::ui::Insets;
 
 #[test]
 fn a_thousand_lifecycle_cycles_leak_no_gpu_object() {
@@ -49,25 +50,16 @@ fn a_thousand_lifecycle_cycles_leak_no_gpu_object() {
     ] {
         apply(life.handle(e), &mut targets);
     }
-    let frame = |targets: &Option<Offscreen>, session: &mut Session, gg: &mut GameGpu| {
+    // The game's own frame, as the shells run it.
+    let mut driver = FrameDriver::new(Clock::Fixed(1.0 / 60.0));
+    let mut frame = |targets: &Option<Offscreen>, session: &mut Session, gg: &mut GameGpu| {
         let Some(out) = targets else { return };
-        let t = &out.targets;
-        let vp = Viewport {
-            width: t.width,
-            height: t.height,
-            scale: 1.0,
-            insets: Insets::default(),
-        };
-        session.update(1.0 / 60.0, &assets.character, vp);
-        gg.upload(&gpu.queue, session, &assets.character);
-        let mut encoder = gpu
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
-        gg.encode(&mut encoder, t, &out.view, session);
-        gpu.queue.submit([encoder.finish()]);
+        let mut game = GameFrame::new(session, gg, &assets.character);
+        game.run(&mut driver, &gpu, Output::Offscreen(out))
+            .unwrap_or_else(|s| panic!("frame not drawn: {s:?}"));
     };
     frame(&targets, &mut session, &mut gg);
-    gg.finish_loading();
+    gg.finish_loading(&gpu);
     gpu.wait();
     let before = LiveObjects::read(&gpu.device);
     let page = dermis_core::heap::page_bytes();

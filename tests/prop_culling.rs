@@ -6,12 +6,12 @@
 use std::path::Path;
 
 use dermis_core::camera::look_at;
-use dermis_core::render::{
-    key_light, DrawSet, FrameView, Gpu, Offscreen, PropInstance, PropKind, RenderStats, Renderer,
-    RgbaImage, EXPOSURE, OFFSCREEN_FORMAT,
+use dermis_core::render::{Gpu, Offscreen, RenderStats, Renderer, RgbaImage, OFFSCREEN_FORMAT};
+use dermis_core::scene::{
+    key_light, showroom, DrawSet, FramePacket, FrameView, PropInstance, PropKind, SceneAssets,
+    EXPOSURE,
 };
-use dermis_core::scene::{showroom, SceneAssets};
-use dermis_core::shading::{material::SKIN1, ShadingModel};
+use dermis_core::shading::ShadingModel;
 use glam::{Mat4, Vec3};
 
 const W: u32 = 256;
@@ -30,8 +30,9 @@ impl Scene {
         let assets = SceneAssets::load(&root, None).unwrap_or_else(|e| panic!("{e}"));
         let mut renderer = Renderer::new(&gpu, OFFSCREEN_FORMAT);
         renderer
-            .load_scene(&gpu, &assets.character, &assets.props, &SKIN1)
+            .load_scene(&gpu, (&assets.character, &assets.roles), &assets.props)
             .unwrap_or_else(|e| panic!("{e}"));
+        renderer.resize(&gpu, (W, H));
         let target = Offscreen::new(&gpu, W, H);
         Self {
             gpu,
@@ -44,23 +45,27 @@ impl Scene {
     fn shoot(&mut self, extra: &[PropInstance]) -> (RenderStats, RgbaImage) {
         let mut props = showroom();
         props.extend_from_slice(extra);
-        self.renderer.set_props(&self.gpu.queue, &props);
         let eye = Vec3::new(0.0, 1.6, 4.0);
-        self.renderer.prepare(
-            &self.gpu.queue,
-            &FrameView {
-                view_proj: look_at(eye, Vec3::new(0.0, 1.0, -6.0), 0.9, W as f32 / H as f32),
-                camera_pos: eye,
-                light: key_light(Vec3::ZERO),
-                exposure: EXPOSURE,
-            },
-        );
+        let view = FrameView {
+            view_proj: look_at(eye, Vec3::new(0.0, 1.0, -6.0), 0.9, W as f32 / H as f32),
+            camera_pos: eye,
+            light: key_light(Vec3::ZERO),
+            exposure: EXPOSURE,
+        };
         let draw = DrawSet {
             shading: Some(ShadingModel::BASELINE),
             character: false,
             props: true,
+            ui: false,
         };
-        let stats = self.renderer.draw_offscreen(&self.gpu, &self.target, draw);
+        let packet = FramePacket {
+            props: Some(&props),
+            ..FramePacket::new((W, H), view, draw)
+        };
+        let frame = self.renderer.prepare(&self.gpu, &packet);
+        let stats = self
+            .renderer
+            .draw_offscreen(&self.gpu, &self.target, &frame);
         (stats, self.target.read(&self.gpu))
     }
 }

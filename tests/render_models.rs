@@ -180,7 +180,7 @@ fn radiance_is_finite_and_non_negative_for_every_model_and_material() {
                     clip,
                     time,
                     props: true,
-                    ..Shot::new(model, *material)
+                    ..Shot::new(model, material.clone())
                 };
                 let pixels = still.render_radiance(&gpu, &assets, &s).unwrap();
                 let bad = pixels

@@ -11,7 +11,7 @@
 //! has SHADER_F16 (lavapipe does) and says so; with CI=true a missing f16 is a failure.
 
 use dermis_core::render::Gpu;
-use dermis_core::shading::material::Material;
+use dermis_core::shading::material::{Material, Origin};
 use dermis_core::shading::pixel::Pixel;
 use dermis_core::shading::ShadingModel;
 use dermis_measure::bake;
@@ -42,7 +42,8 @@ fn materials() -> Vec<Material> {
             for eta in ETA {
                 for g in G {
                     out.push(Material {
-                        name: "grid",
+                        name: "grid".into(),
+                        origin: Origin::Builtin,
                         sigma_a: [a, a * 0.5, a * 2.0],
                         sigma_s_prime: [s, s * 2.0, s * 0.5],
                         eta,

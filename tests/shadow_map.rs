@@ -9,7 +9,8 @@ mod common;
 use common::Rig;
 use dermis_core::camera::look_at;
 use dermis_core::governor::GovernorConfig;
-use dermis_core::render::{key_light, FrameView, Gpu, RgbaImage, EXPOSURE, SHADOW_MAP_SIZE};
+use dermis_core::render::{Gpu, RgbaImage, SHADOW_MAP_SIZE};
+use dermis_core::scene::{key_light, FrameView, EXPOSURE};
 use dermis_core::shading::ShadingModel;
 use dermis_measure::ground_truth::{self as reference, metric, ReferenceSet, Scene};
 use dermis_measure::scenes::SceneRenderer;
@@ -44,15 +45,12 @@ impl Rig {
             .renderer
             .set_shadow_scene(&self.gpu, casts, &[], None, size);
         let (view_proj, camera_pos) = self.shadow_camera();
-        self.gg.renderer.prepare(
-            &self.gpu.queue,
-            &FrameView {
-                view_proj,
-                camera_pos,
-                light: key_light(self.feet_on_ground()),
-                exposure: EXPOSURE,
-            },
-        );
+        self.camera = Some(FrameView {
+            view_proj,
+            camera_pos,
+            light: key_light(self.feet_on_ground()),
+            exposure: EXPOSURE,
+        });
         self.shoot_frame(character)
     }
 
@@ -121,8 +119,8 @@ fn the_runner_casts_on_the_floor_and_on_itself_and_shadows_only_darken() {
 }
 
 fn skin1_set() -> (dermis_core::shading::Material, ReferenceSet) {
-    let m = reference::acceptance_materials()[0];
-    let set = ReferenceSet::load(&reference::file_for(&reference::default_dir(), m.name))
+    let [m, _] = reference::acceptance_materials();
+    let set = ReferenceSet::load(&reference::file_for(&reference::default_dir(), &m.name))
         .unwrap_or_else(|e| panic!("{e}"));
     (m, set)
 }

@@ -9,7 +9,7 @@ use std::path::Path;
 
 use common::Rig;
 use dermis_core::game::Screen;
-use dermis_core::render::{DrawSet, RgbaImage};
+use dermis_core::render::RgbaImage;
 use dermis_core::shading::ShadingModel;
 
 const W: u32 = 960;
@@ -17,37 +17,11 @@ const H: u32 = 540;
 
 /// The showroom's frames on the shared rig.
 impl Rig {
-    /// Renders the frame last updated: the game's own pass, or with `character: false` the
-    /// same frame without the character.
-    fn render(&self, character: bool) -> RgbaImage {
-        let mut encoder = self
-            .gpu
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
-        if character {
-            self.gg.encode(
-                &mut encoder,
-                &self.target.targets,
-                &self.target.view,
-                &self.session,
-            );
-        } else {
-            let draw = DrawSet {
-                character: false,
-                ..self.session.draw_set()
-            };
-            self.gg.renderer.encode(
-                &mut encoder,
-                &self.target.targets,
-                &self.target.view,
-                draw,
-                Some(&self.gg.ui),
-                None,
-            );
-        }
-        self.target.copy_out(&mut encoder);
-        self.gpu.queue.submit([encoder.finish()]);
-        self.target.read(&self.gpu)
+    /// Renders the frame last updated: the game's own frame, or with `character: false`
+    /// the same frame without the character.
+    fn render(&mut self, character: bool) -> RgbaImage {
+        self.prepare(|p| p.draw.character = character);
+        self.draw()
     }
 
     /// The menu frame with `model` chosen, at the same moment (no time passes).

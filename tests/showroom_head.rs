@@ -49,21 +49,10 @@ fn save(img: &RgbaImage, name: &str) {
     }
 }
 
-/// The game's own frame: the scene and the menu's UI in one pass.
-fn menu_frame(rig: &Rig) -> RgbaImage {
-    let mut encoder = rig
-        .gpu
-        .device
-        .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
-    rig.gg.encode(
-        &mut encoder,
-        &rig.target.targets,
-        &rig.target.view,
-        &rig.session,
-    );
-    rig.target.copy_out(&mut encoder);
-    rig.gpu.queue.submit([encoder.finish()]);
-    rig.target.read(&rig.gpu)
+/// The game's own frame: the scene and the menu's UI.
+fn menu_frame(rig: &mut Rig) -> RgbaImage {
+    rig.prepare(|_| {});
+    rig.draw()
 }
 
 fn credit_shown(rig: &Rig) -> bool {
@@ -95,7 +84,7 @@ fn the_showroom_shows_the_scanned_head_under_its_orbiting_light() {
     assert!(!credit_shown(&rig), "the head's credit without the head");
     let runner = rig.shoot_frame(true);
     // Every model's pipeline in (the background builder's), before counting.
-    rig.gg.finish_loading();
+    rig.gg.finish_loading(&rig.gpu);
     let live = LiveObjects::read(&rig.gpu.device);
 
     // The head, at the same moment.
@@ -106,7 +95,7 @@ fn the_showroom_shows_the_scanned_head_under_its_orbiting_light() {
     assert!(credit_shown(&rig), "the head is shown without its credit");
     let head = rig.shoot_frame(true);
     let empty = rig.shoot_frame(false);
-    let menu = menu_frame(&rig);
+    let menu = menu_frame(&mut rig);
     // Four seconds later: the light has turned a quarter of its orbit.
     for _ in 0..240 {
         rig.update(1.0 / 60.0);
@@ -186,14 +175,15 @@ fn the_showroom_shows_the_scanned_head_under_its_orbiting_light() {
     rig.session.gui.set_subject(Subject::Head);
     rig.session
         .update(0.0, &rig.assets.character, rig.viewport());
-    float_gg.upload(&rig.gpu.queue, &mut rig.session, &rig.assets.character);
-    let mut encoder = rig
-        .gpu
-        .device
-        .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
-    float_gg.encode(&mut encoder, &target.targets, &target.view, &rig.session);
-    target.copy_out(&mut encoder);
-    rig.gpu.queue.submit([encoder.finish()]);
+    float_gg.finish_loading(&rig.gpu);
+    float_gg.renderer.resize(&rig.gpu, (W, H));
+    let head = float_gg.head.clone();
+    let packet = rig
+        .session
+        .extract(&rig.assets.character, head.as_deref(), false);
+    float_gg.prepare(&rig.gpu, &packet);
+    let frame = float_gg.last_frame().expect("prepared");
+    float_gg.renderer.draw_offscreen(&rig.gpu, &target, frame);
     let radiance = target.read_f16(&rig.gpu);
     let bad = radiance
         .iter()

@@ -14,13 +14,14 @@ fn gpu() -> Gpu {
 fn set(m: &Material) -> ReferenceSet {
     ReferenceSet::load(&ground_truth::file_for(
         &ground_truth::default_dir(),
-        m.name,
+        &m.name,
     ))
     .unwrap_or_else(|e| panic!("{e}"))
 }
 
 fn skin1() -> Material {
-    ground_truth::acceptance_materials()[0]
+    let [skin1, _] = ground_truth::acceptance_materials();
+    skin1
 }
 
 /// The error a model may have on top of the reference's own noise.
@@ -169,14 +170,21 @@ fn the_preintegrated_lut_matches_path_traced_spheres_and_flat_ground() {
 fn the_screen_space_pass_exists_only_where_a_model_calls_for_it() {
     let gpu = gpu();
     let format = wgpu::TextureFormat::Rgba8UnormSrgb;
+    let assets = dermis_core::scene::SceneAssets::load(
+        &std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets"),
+        None,
+    )
+    .unwrap();
+    let pipelines = || LiveObjects::read(&gpu.device).render_pipelines;
+    // (pipelines built with nothing loaded, whether the subsurface pass is one of them,
+    // pipelines the props add once loaded).
     let count = |set: &PipelineSet| {
-        let before = LiveObjects::read(&gpu.device);
-        let r = Renderer::with_pipelines(&gpu, format, set);
-        let after = LiveObjects::read(&gpu.device);
-        (
-            after.render_pipelines - before.render_pipelines,
-            r.has_subsurface_pass(),
-        )
+        let before = pipelines();
+        let mut r = Renderer::with_pipelines(&gpu, format, set);
+        let built = pipelines() - before;
+        let (kind, model) = &assets.props[0];
+        r.load_prop(&gpu, *kind, model);
+        (built, r.has_subsurface_pass(), pipelines() - before - built)
     };
     let local = PipelineSet {
         models: vec![ShadingModel::Ward, ShadingModel::Preintegrated],
@@ -186,8 +194,8 @@ fn the_screen_space_pass_exists_only_where_a_model_calls_for_it() {
         models: vec![ShadingModel::Ward, ShadingModel::Tabulated],
         unlit: false,
     };
-    // Character pipelines + props; the spatial set adds the props' two-target variant and
-    // the subsurface pass.
-    assert_eq!(count(&local), (2 + 1, false));
-    assert_eq!(count(&spatial), (2 + 1 + 2, true));
+    // The character pipelines; the spatial set adds the subsurface pass. Props add theirs
+    // when they are loaded: one, and in the spatial set their two-target variant too.
+    assert_eq!(count(&local), (2, false, 1));
+    assert_eq!(count(&spatial), (2 + 1, true, 2));
 }

@@ -109,6 +109,8 @@ pub struct Renderer {
     pub soak: Option<crate::soak::Soak>,
     /// The activity's cache directory: the pipeline cache lives there.
     pub cache_dir: Option<PathBuf>,
+    /// The pipeline cache was saved once every pipeline was built.
+    cache_saved: bool,
 }
 
 impl Renderer {
@@ -124,6 +126,7 @@ impl Renderer {
             frames: 0,
             soak: None,
             cache_dir: None,
+            cache_saved: false,
         }
     }
 
@@ -243,7 +246,7 @@ impl Renderer {
     pub fn drop_surface(&mut self) {
         if self.target.take().is_some() {
             log::info!("surface dropped");
-            // Every pipeline is built by now: the next launch starts from them.
+            // What was built since the last save: the next launch starts from it.
             if let Some(n) = self.gpu.as_ref().and_then(Gpu::save_pipeline_cache) {
                 log::info!("pipeline cache saved ({n} bytes)");
             }
@@ -281,6 +284,11 @@ impl Renderer {
         }
         if let Some(soak) = &mut self.soak {
             soak.frame(gpu, &times, self.driver.harvested(), &game.session);
+        }
+        // Every pipeline built (and the head uploaded): kept for the next launch now.
+        if !self.cache_saved && gg.loaded() {
+            gpu.save_pipeline_cache();
+            self.cache_saved = true;
         }
         self.frames += 1;
         if self.frames.is_multiple_of(3600) {

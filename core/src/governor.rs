@@ -48,7 +48,7 @@
 
 use glam::{Mat4, Vec3, Vec4};
 
-use crate::render::rig::CHARACTER;
+use crate::scene::CHARACTER;
 use crate::shading::ShadingModel;
 
 /// The most tiers a list holds.
@@ -495,7 +495,7 @@ mod tests {
     #[test]
     fn a_character_in_view_under_the_light_is_covered_and_lit() {
         let view_proj = crate::camera::look_at(Vec3::new(0.0, 1.0, 4.0), Vec3::Y, 1.0, 16.0 / 9.0);
-        let light = crate::render::KEY_LIGHT_OFFSET;
+        let light = crate::scene::KEY_LIGHT_OFFSET;
         let seen = Needs::of_character(view_proj, Vec3::ZERO, light, 30.0);
         let (min, max) = character_box(Vec3::ZERO);
         assert_eq!(seen.coverage, projected_coverage(view_proj, min, max));

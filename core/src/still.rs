@@ -5,20 +5,22 @@ use glam::{Mat4, Quat, Vec3};
 use crate::anim::Pose;
 use crate::camera::look_at;
 use crate::render::{
-    DrawSet, FrameView, Gpu, Light, Offscreen, PassTimer, Renderer, RgbaImage, CHARACTER, EXPOSURE,
-    OFFSCREEN_FORMAT,
+    Gpu, Offscreen, PassCtx, PassTimer, PreparedFrame, Renderer, RgbaImage, OFFSCREEN_FORMAT,
 };
-use crate::scene::{frame_bounds, posed_bounds, showroom, SceneAssets};
+use crate::scene::{
+    frame_bounds, posed_bounds, showroom, DrawSet, FramePacket, FrameView, Light, PropInstance,
+    SceneAssets, SubjectPose, CHARACTER, EXPOSURE,
+};
 use crate::shading::{Material, ShadingModel};
 
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Shot {
     /// `None`: the unlit baseline.
     pub shading: Option<ShadingModel>,
     pub material: Material,
     pub clip: usize,
     pub time: f32,
-    /// Light position; `None`: the key light ([`crate::render::KEY_LIGHT_OFFSET`]).
+    /// Light position; `None`: the key light ([`crate::scene::KEY_LIGHT_OFFSET`]).
     pub light: Option<Vec3>,
     /// Draw the showroom props around the character.
     pub props: bool,
@@ -47,9 +49,8 @@ pub struct StillRenderer {
     pose: Pose,
     material: Option<Material>,
     timer: Option<PassTimer>,
-    /// Blob shadows built ([`Self::enable_blob_shadows`]): each shot restages the
-    /// character's blob.
-    shadows: bool,
+    /// The showroom's props, placed with every shot (drawn in shots with props).
+    props: Vec<PropInstance>,
 }
 
 impl StillRenderer {
@@ -66,20 +67,15 @@ impl StillRenderer {
         format: wgpu::TextureFormat,
     ) -> Result<Self, String> {
         let mut renderer = Renderer::new(gpu, format);
-        renderer.load_scene(
-            gpu,
-            &assets.character,
-            &assets.props,
-            &crate::shading::material::SKIN1,
-        )?;
-        renderer.set_props(&gpu.queue, &showroom());
+        renderer.load_scene(gpu, (&assets.character, &assets.roles), &assets.props)?;
+        renderer.resize(gpu, (width, height));
         Ok(Self {
             renderer,
             offscreen: Offscreen::with_format(gpu, width, height, format),
             pose: Pose::new(&assets.character),
             material: None,
             timer: PassTimer::new(&gpu.device, &gpu.queue),
-            shadows: false,
+            props: showroom(),
         })
     }
 
@@ -87,24 +83,20 @@ impl StillRenderer {
     /// showroom props (drawn only in shots with props); returns whether they exist. Stills
     /// have none unless this is called; `renderer.set_blob_shadows` switches them.
     pub fn enable_blob_shadows(&mut self, gpu: &Gpu) -> bool {
-        self.shadows = self.renderer.enable_blob_shadows(gpu);
-        if self.shadows {
-            self.renderer.set_props(&gpu.queue, &showroom());
-        }
-        self.shadows
+        self.renderer.enable_blob_shadows(gpu)
     }
 
-    /// Poses the character, places camera and light, writes uniforms; returns the view.
-    pub fn setup(
+    /// Poses the character, places camera and light and prepares the frame of `shot`.
+    pub fn frame(
         &mut self,
         gpu: &Gpu,
         assets: &SceneAssets,
         shot: &Shot,
-    ) -> Result<FrameView, String> {
+    ) -> Result<PreparedFrame, String> {
         let model = &assets.character;
-        if self.material != Some(shot.material) {
-            self.renderer.set_material(&gpu.queue, &shot.material);
-            self.material = Some(shot.material);
+        if self.material.as_ref() != Some(&shot.material) {
+            self.renderer.set_material(gpu, &shot.material);
+            self.material = Some(shot.material.clone());
         }
         self.pose.reset(model);
         if !model.animations.is_empty() {
@@ -132,12 +124,6 @@ impl StillRenderer {
             Vec3::new(-center.x * scale, -lo.y * scale, -center.z * scale),
         );
         let (wlo, whi) = (world.transform_point3(lo), world.transform_point3(hi));
-        self.renderer
-            .update_character(&gpu.queue, model, &self.pose, world);
-        if self.shadows {
-            // Uploads the character's blob (the props' are unchanged).
-            self.renderer.set_props(&gpu.queue, &showroom());
-        }
         let (w, h) = (self.offscreen.targets.width, self.offscreen.targets.height);
         let aspect = w as f32 / h as f32;
         let fov = 40f32.to_radians();
@@ -153,8 +139,22 @@ impl StillRenderer {
             light,
             exposure: EXPOSURE,
         };
-        self.renderer.prepare(&gpu.queue, &view);
-        Ok(view)
+        let draw = DrawSet {
+            shading: shot.shading,
+            character: true,
+            props: shot.props,
+            ui: false,
+        };
+        let packet = FramePacket {
+            subject: Some(SubjectPose {
+                model,
+                pose: &self.pose,
+                world,
+            }),
+            props: Some(&self.props),
+            ..FramePacket::new((w, h), view, draw)
+        };
+        Ok(self.renderer.prepare(gpu, &packet))
     }
 
     /// Renders `shot` and reads the image back.
@@ -164,7 +164,8 @@ impl StillRenderer {
         assets: &SceneAssets,
         shot: &Shot,
     ) -> Result<RgbaImage, String> {
-        self.draw(gpu, assets, shot)?;
+        let frame = self.frame(gpu, assets, shot)?;
+        self.renderer.draw_offscreen(gpu, &self.offscreen, &frame);
         Ok(self.offscreen.read(gpu))
     }
 
@@ -175,50 +176,38 @@ impl StillRenderer {
         assets: &SceneAssets,
         shot: &Shot,
     ) -> Result<Vec<[f32; 4]>, String> {
-        self.draw(gpu, assets, shot)?;
+        let frame = self.frame(gpu, assets, shot)?;
+        self.renderer.draw_offscreen(gpu, &self.offscreen, &frame);
         Ok(self.offscreen.read_f16(gpu))
     }
 
-    fn draw(&mut self, gpu: &Gpu, assets: &SceneAssets, shot: &Shot) -> Result<(), String> {
-        self.setup(gpu, assets, shot)?;
-        let draw = DrawSet {
-            shading: shot.shading,
-            character: true,
-            props: shot.props,
-        };
-        self.renderer.draw_offscreen(gpu, &self.offscreen, draw);
-        Ok(())
-    }
-
-    /// Renders only the character pass with timestamps around it; returns GPU milliseconds.
-    pub fn time_character_pass(&mut self, gpu: &Gpu, shading: Option<ShadingModel>) -> Option<f64> {
-        self.time_pass(gpu, shading, false)
-    }
-
-    /// Renders the character, with the props (and their blob shadows, when on) if `props`,
-    /// with timestamps around the scene passes; returns GPU milliseconds.
-    pub fn time_pass(
-        &mut self,
-        gpu: &Gpu,
-        shading: Option<ShadingModel>,
-        props: bool,
-    ) -> Option<f64> {
-        let timer = self.timer.as_ref()?;
-        let mut encoder = gpu
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
-        let draw = DrawSet {
-            shading,
-            character: true,
-            props,
-        };
+    /// Records `frame` into `encoder` (untimed), into the still's target.
+    pub fn encode(&self, encoder: &mut wgpu::CommandEncoder, frame: &PreparedFrame) {
         self.renderer.encode(
-            &mut encoder,
-            &self.offscreen.targets,
-            &self.offscreen.view,
-            draw,
-            None,
-            Some(timer),
+            frame,
+            &mut PassCtx {
+                encoder,
+                targets: &self.offscreen.targets,
+                output: &self.offscreen.view,
+                timer: None,
+            },
+        );
+    }
+
+    /// Renders `shot` with timestamps around its scene passes (the character, and the props
+    /// and their blob shadows in a shot with props); returns GPU milliseconds.
+    pub fn time_pass(&mut self, gpu: &Gpu, assets: &SceneAssets, shot: &Shot) -> Option<f64> {
+        let frame = self.frame(gpu, assets, shot).ok()?;
+        let timer = self.timer.as_ref()?;
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        self.renderer.encode(
+            &frame,
+            &mut PassCtx {
+                encoder: &mut encoder,
+                targets: &self.offscreen.targets,
+                output: &self.offscreen.view,
+                timer: Some(timer),
+            },
         );
         timer.resolve(&mut encoder);
         gpu.queue.submit([encoder.finish()]);

@@ -236,6 +236,7 @@ fn chain_model() -> Model {
                 .concat(),
             }],
         }],
+        warnings: vec![],
     }
 }
 

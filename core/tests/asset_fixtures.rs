@@ -112,9 +112,9 @@ fn slice_loader_uses_resolver() {
         [
             "model data.bin",
             "textures/skin.png",
-            "model.gltf.textures/0-base-color.bc.ktx2",
-            "model.gltf.textures/0-base-color.etc2.ktx2",
-            "model.gltf.textures/0-base-color.astc.ktx2",
+            "model.gltf.textures/0-colour.bc.ktx2",
+            "model.gltf.textures/0-colour.etc2.ktx2",
+            "model.gltf.textures/0-colour.astc.ktx2",
         ]
     );
     let failing = |_: &str| -> Result<Vec<u8>, String> { Err("asset missing".into()) };

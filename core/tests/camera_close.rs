@@ -6,8 +6,8 @@
 
 use dermis_core::app::{Key, Session, Viewport};
 use dermis_core::game::Screen;
-use dermis_core::render::rig::CHARACTER;
 use dermis_core::scene::SceneAssets;
+use dermis_core::scene::CHARACTER;
 use dermis_core::ui::Insets;
 use std::path::Path;
 

@@ -9,7 +9,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 use dermis_core::app::{GameUi, Settings};
 use dermis_core::game::{Bot, Game, Screen};
-use dermis_core::render::PropInstance;
+use dermis_core::scene::PropInstance;
 use dermis_core::ui::{Insets, Ui};
 
 struct Counting;

@@ -2,7 +2,7 @@
 
 use dermis_core::app::Settings;
 use dermis_core::game::{Clip, Game, Input, ObstacleKind, Screen, Swipe, TICK_DT, TICK_HZ};
-use dermis_core::render::{PropInstance, PropKind};
+use dermis_core::scene::{PropInstance, PropKind};
 use dermis_core::shading::ShadingModel;
 
 const NONE: Input = Input::NONE;

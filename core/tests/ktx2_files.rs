@@ -1,7 +1,8 @@
 //! KTX2 texture files, good and hostile (`tests/data/ktx2/`): a good file reads as it was
 //! written; a truncated one, one lying about its size or its levels, one in a format dermis
 //! does not read or in the wrong colour space for its role, is one line of error and never a
-//! panic, and the loader then falls back (another encoding, else the decoded source). Runs on
+//! panic, and the loader then falls back (another encoding, else the decoded source; a KTX2
+//! image in the other role's colour space, to that role's encodings beside it). Runs on
 //! Android bionic too (`cargo xtask android-test`).
 
 mod common;
@@ -81,13 +82,17 @@ fn corpus() -> Vec<(&'static str, Vec<u8>, Option<&'static str>)> {
         ("basis.ktx2", basis, Some("Basis Universal")),
         ("rgba8.ktx2", rgba8, Some("uncompressed format")),
         ("garbage.ktx2", garbage, Some("garbage after the magic")),
-        // Good files, wrong for a role: linear data for a colour texture, no alpha for a mask.
+        // Good files, wrong for the colour role: linear data.
         (
             "linear-bc1.ktx2",
             good(BlockFormat::Bc1, false).write(),
             None,
         ),
-        ("etc2-no-alpha.ktx2", etc2, None),
+        (
+            "linear-etc2.ktx2",
+            good(BlockFormat::Etc2Rgb8, false).write(),
+            None,
+        ),
     ]
 }
 
@@ -125,22 +130,21 @@ fn bad_files_are_one_line_and_good_ones_read_back() {
 }
 
 #[test]
-fn the_wrong_colour_space_or_no_alpha_is_refused_for_its_role() {
+fn the_wrong_colour_space_is_refused_for_its_role() {
     let read = |name| BlockImage::read(&std::fs::read(dir().join(name)).unwrap(), LIMITS).unwrap();
     assert!(read("good-bc1.ktx2")
-        .check_role(TextureRole::BaseColor)
+        .check_role(TextureRole::Colour)
         .is_ok());
     let e = read("linear-bc1.ktx2")
-        .check_role(TextureRole::BaseColor)
+        .check_role(TextureRole::Colour)
         .unwrap_err();
     assert!(e.contains("linear") && e.contains("sRGB"), "{e}");
     assert!(read("linear-bc1.ktx2")
-        .check_role(TextureRole::Normal)
+        .check_role(TextureRole::Data)
         .is_ok());
-    let e = read("etc2-no-alpha.ktx2")
-        .check_role(TextureRole::BaseColorMasked)
-        .unwrap_err();
-    assert!(e.contains("alpha"), "{e}");
+    assert!(read("good-etc2.ktx2")
+        .check_role(TextureRole::Data)
+        .is_err());
 }
 
 /// The loader's choice for a PNG source whose encodings are the files named: usable ones are
@@ -166,7 +170,7 @@ fn formats(t: &dermis_core::asset::TextureImage) -> Vec<BlockFormat> {
 
 #[test]
 fn the_loader_keeps_usable_encodings_and_falls_back_to_the_source() {
-    let both = load("good-bc1.ktx2", "good-etc2.ktx2", TextureRole::BaseColor);
+    let both = load("good-bc1.ktx2", "good-etc2.ktx2", TextureRole::Colour);
     assert_eq!(
         formats(&both),
         [BlockFormat::Bc1, BlockFormat::Etc2Rgb8],
@@ -178,19 +182,15 @@ fn the_loader_keeps_usable_encodings_and_falls_back_to_the_source() {
         "basis.ktx2",
         "garbage.ktx2",
     ] {
-        let t = load(bad, "good-etc2.ktx2", TextureRole::BaseColor);
+        let t = load(bad, "good-etc2.ktx2", TextureRole::Colour);
         assert_eq!(formats(&t), [BlockFormat::Etc2Rgb8], "{bad} left out");
     }
     // Wrong for the role, or made from another image: the PNG, decoded.
-    let t = load(
-        "linear-bc1.ktx2",
-        "etc2-no-alpha.ktx2",
-        TextureRole::BaseColorMasked,
-    );
+    let t = load("linear-bc1.ktx2", "linear-etc2.ktx2", TextureRole::Colour);
     assert!(matches!(&t.texels, Texels::Rgba8(px) if px.len() == 8 * 8 * 4));
     let stale = encoded_texture(
         &std::fs::read(dir().join("other.png")).unwrap(),
-        TextureRole::BaseColor,
+        TextureRole::Colour,
         &|_| "good-bc1.ktx2".into(),
         &|p: &str| std::fs::read(dir().join(p)).map_err(|e| e.to_string()),
         "other image",
@@ -204,7 +204,7 @@ fn the_loader_keeps_usable_encodings_and_falls_back_to_the_source() {
     let read = |p: &str| std::fs::read(dir().join(p)).map_err(|e| e.to_string());
     let only = encoded_texture(
         &[],
-        TextureRole::BaseColor,
+        TextureRole::Colour,
         &|_| "good-etc2.ktx2".into(),
         &read,
         "x",
@@ -213,10 +213,25 @@ fn the_loader_keeps_usable_encodings_and_falls_back_to_the_source() {
     assert_eq!(formats(&only), [BlockFormat::Etc2Rgb8]);
     let none = encoded_texture(
         &[],
-        TextureRole::BaseColor,
+        TextureRole::Colour,
         &|_| "garbage.ktx2".into(),
         &read,
         "x",
     );
+    assert!(none.is_err_and(|e| !e.contains('\n')));
+    // A KTX2 image (an APK glb's, pointing at its colour encoding) read as data: the data
+    // encoding beside it, else one error.
+    let etc2 = std::fs::read(dir().join("good-etc2.ktx2")).unwrap();
+    let data = encoded_texture(
+        &etc2,
+        TextureRole::Data,
+        &|_| "linear-etc2.ktx2".into(),
+        &read,
+        "x",
+    )
+    .unwrap();
+    assert_eq!(formats(&data), [BlockFormat::Etc2Rgb8]);
+    assert!(!data.srgb);
+    let none = encoded_texture(&etc2, TextureRole::Data, &|_| "none".into(), &read, "x");
     assert!(none.is_err_and(|e| !e.contains('\n')));
 }

@@ -9,7 +9,7 @@ use common::{inside, on_screen};
 use dermis_core::app::menu::{self, MARGIN};
 use dermis_core::app::{Session, Viewport};
 use dermis_core::game::Screen;
-use dermis_core::render::rig::CHARACTER;
+use dermis_core::scene::CHARACTER;
 use dermis_core::ui::{Insets, Rect};
 
 const FRAME: f32 = 1.0 / 60.0;

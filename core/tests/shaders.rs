@@ -137,7 +137,7 @@ fn props_and_ui_carry_no_subsurface_code() {
         for module in [
             "dipole",
             "oss",
-            "burley",
+            "subsurface",
             "ward",
             "ward_lobe",
             "fresnel",

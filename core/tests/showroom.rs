@@ -12,7 +12,7 @@ use dermis_core::app::showroom::{self, BUST_HI, BUST_LO, LIGHT_PERIOD_S};
 use dermis_core::app::{Key, Session, Viewport};
 use dermis_core::asset::Model;
 use dermis_core::game::{Clip, Input, Screen};
-use dermis_core::render::rig::{key_light, CHARACTER};
+use dermis_core::scene::{key_light, CHARACTER};
 use dermis_core::ui::{Insets, Rect};
 use glam::{Vec3, Vec4Swizzles};
 

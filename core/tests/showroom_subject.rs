@@ -13,8 +13,8 @@ use dermis_core::app::showroom::{self, head_matrix, HEAD_HI, HEAD_LO};
 use dermis_core::app::{Key, Session, Subject, Viewport};
 use dermis_core::face::head::{CREDIT_LINES, HEAD_CENTRE};
 use dermis_core::game::Screen;
-use dermis_core::render::rig::{key_light, CHARACTER};
 use dermis_core::scene::SceneAssets;
+use dermis_core::scene::{key_light, CHARACTER};
 use dermis_core::ui::Insets;
 use glam::Vec3;
 

@@ -238,7 +238,10 @@ mod tests {
     fn every_preset_has_shipped_tables_at_the_current_budget() {
         // Tables baked with another budget, material or layout would be ignored (and the
         // runtime would fall back to another material's): `dermis lut --out assets/sss`.
-        for m in PRESETS.iter().flat_map(|m| [*m, acceptance_material(m)]) {
+        for m in PRESETS
+            .iter()
+            .flat_map(|m| [m.clone(), acceptance_material(m)])
+        {
             let b = bake::shipped(&m)
                 .unwrap_or_else(|| panic!("no shipped tables for {}", bake::file_name(&m)));
             assert!(b.mass.iter().flatten().all(|v| v.is_finite() && *v >= 0.0));

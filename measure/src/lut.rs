@@ -232,7 +232,10 @@ mod tests {
     fn every_preset_has_a_shipped_lut_at_the_current_budget() {
         // A shipped table baked with another budget, material or layout would be ignored
         // (and the game would bake for minutes at load): `dermis lut --out assets/sss`.
-        for m in PRESETS.iter().flat_map(|m| [*m, acceptance_material(m)]) {
+        for m in PRESETS
+            .iter()
+            .flat_map(|m| [m.clone(), acceptance_material(m)])
+        {
             let found = SHIPPED
                 .iter()
                 .find_map(|b| Lut::from_bytes(b, &m, &bake::DEFAULT_BUDGET));

@@ -20,7 +20,8 @@ use glam::{Mat4, Vec3};
 use dermis_core::anim::Pose;
 use dermis_core::asset::shapes::{plane_model, sphere_model};
 use dermis_core::asset::Model;
-use dermis_core::render::{DrawSet, FrameView, Gpu, Light, Offscreen, Renderer};
+use dermis_core::render::{Gpu, Offscreen, Renderer};
+use dermis_core::scene::{DrawSet, FramePacket, FrameView, Light, Roles, SubjectPose};
 use dermis_core::shading::{fresnel, subsurface, units, Material, ShadingModel};
 
 use crate::ground_truth::Scene;
@@ -41,7 +42,7 @@ pub struct SceneRenderer {
     renderer: Renderer,
     target: Offscreen,
     /// The geometry currently loaded (so consecutive renders of one scene upload it once).
-    loaded: Option<(Geometry, Model)>,
+    loaded: Option<(Geometry, Model, Pose)>,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -65,7 +66,8 @@ pub type Exitance = Vec<[f64; 3]>;
 impl SceneRenderer {
     pub fn new(gpu: &Gpu) -> Self {
         let mut renderer = Renderer::new(gpu, wgpu::TextureFormat::Rgba16Float);
-        renderer.clear = wgpu::Color::BLACK;
+        renderer.set_clear(wgpu::Color::BLACK);
+        renderer.resize(gpu, (PIXELS, PIXELS));
         let target = Offscreen::with_format(gpu, PIXELS, PIXELS, wgpu::TextureFormat::Rgba16Float);
         Self {
             renderer,
@@ -75,7 +77,7 @@ impl SceneRenderer {
     }
 
     fn load(&mut self, gpu: &Gpu, geometry: Geometry, material: &Material) -> Result<(), String> {
-        if self.loaded.as_ref().map(|(g, _)| *g) != Some(geometry) {
+        if self.loaded.as_ref().map(|(g, _, _)| *g) != Some(geometry) {
             let mm = |x: f64| (x / units::MM_PER_M) as f32;
             let model = match geometry {
                 Geometry::Plane {
@@ -84,14 +86,13 @@ impl SceneRenderer {
                 } => plane_model(mm(half_mm), mm(thickness_mm)),
                 Geometry::Sphere { radius_mm } => sphere_model(mm(radius_mm), mm(2.0 * radius_mm)),
             };
-            self.renderer.load_character(gpu, &model, material)?;
+            self.renderer
+                .load_character(gpu, &model, &Roles::medium(material))?;
             let mut pose = Pose::new(&model);
             pose.update_world(&model);
-            self.renderer
-                .update_character(&gpu.queue, &model, &pose, Mat4::IDENTITY);
-            self.loaded = Some((geometry, model));
+            self.loaded = Some((geometry, model, pose));
         } else {
-            self.renderer.set_material(&gpu.queue, material);
+            self.renderer.set_material(gpu, material);
         }
         Ok(())
     }
@@ -333,21 +334,29 @@ impl SceneRenderer {
             color: Vec3::ONE,
             ambient: Vec3::ZERO,
         };
-        self.renderer.prepare(
-            &gpu.queue,
-            &FrameView {
-                view_proj: proj * view,
-                camera_pos: eye,
-                light,
-                exposure: 1.0,
-            },
-        );
+        let view = FrameView {
+            view_proj: proj * view,
+            camera_pos: eye,
+            light,
+            exposure: 1.0,
+        };
         let draw = DrawSet {
             shading: Some(shading),
             character: true,
             props: false,
+            ui: false,
         };
-        self.renderer.draw_offscreen(gpu, &self.target, draw);
+        let subject = self.loaded.as_ref().map(|(_, model, pose)| SubjectPose {
+            model,
+            pose,
+            world: Mat4::IDENTITY,
+        });
+        let packet = FramePacket {
+            subject,
+            ..FramePacket::new((PIXELS, PIXELS), view, draw)
+        };
+        let frame = self.renderer.prepare(gpu, &packet);
+        self.renderer.draw_offscreen(gpu, &self.target, &frame);
         self.target.read_f16(gpu)
     }
 }

@@ -293,7 +293,7 @@ pub fn parse_model(s: &str) -> Result<dermis_core::shading::ShadingModel, String
 pub fn parse_material(s: &str) -> Result<dermis_core::shading::Material, String> {
     use dermis_core::shading::material::PRESETS;
     dermis_core::shading::Material::preset(s).ok_or_else(|| {
-        let known: Vec<&str> = PRESETS.iter().map(|m| m.name).collect();
+        let known: Vec<&str> = PRESETS.iter().map(|m| &*m.name).collect();
         format!("unknown material `{s}` (known: {})", known.join(", "))
     })
 }

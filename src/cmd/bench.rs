@@ -3,9 +3,8 @@
 use std::path::PathBuf;
 use std::time::Instant;
 
-use dermis_core::anim::Pose;
 use dermis_core::app::{GameFrame, GameGpu, GameLoad, GameSetup};
-use dermis_core::render::{Clock, DrawSet, FrameDriver, Gpu, Offscreen, Output, OFFSCREEN_FORMAT};
+use dermis_core::render::{Clock, FrameDriver, Gpu, Offscreen, Output, OFFSCREEN_FORMAT};
 use dermis_core::shading::{material::SKIN1, ShadingModel};
 use dermis_core::still::{Shot, StillRenderer};
 use serde_json::json;
@@ -232,7 +231,7 @@ fn frame(
     GameFrame::new(&mut session, &mut game_gpu, &assets.character)
         .run(&mut driver, &gpu, Output::Offscreen(&target))
         .map_err(|e| format!("second frame: {e:?}"))?;
-    game_gpu.finish_loading();
+    game_gpu.finish_loading(&gpu);
     let all_pipelines_ms = start.elapsed().as_secs_f64() * 1e3;
     let texture_bytes = dermis_core::render::uploaded_bytes();
     drop(game_gpu);
@@ -298,37 +297,20 @@ fn frame(
     progress.step("close-up framed");
 
     // CPU per frame: animation + joint palettes + uniforms + command encoding.
-    let model = &assets.character;
-    let mut pose = Pose::new(model);
-    let clip = model.animations.get(1).or(model.animations.first());
+    let clip = usize::from(assets.character.animations.len() > 1);
     let mut cpu_ms = Vec::with_capacity(frames);
-    still.setup(&gpu, &assets, &close)?;
     for f in 0..frames {
         let t = Instant::now();
-        pose.reset(model);
-        if let Some(c) = clip {
-            pose.apply_clip(c, (f as f32 / 60.0) % c.duration.max(1e-3));
-        }
-        pose.update_world(model);
-        still
-            .renderer
-            .update_character(&gpu.queue, model, &pose, glam::Mat4::IDENTITY);
-        let mut encoder = gpu
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
-        let draw = DrawSet {
+        let shot = Shot {
             shading: Some(ShadingModel::DEFAULT),
-            character: true,
             props: true,
+            clip,
+            time: f as f32 / 60.0,
+            ..close.clone()
         };
-        still.renderer.encode(
-            &mut encoder,
-            &still.offscreen.targets,
-            &still.offscreen.view,
-            draw,
-            None,
-            None,
-        );
+        let frame = still.frame(&gpu, &assets, &shot)?;
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        still.encode(&mut encoder, &frame);
         let cmd = encoder.finish();
         cpu_ms.push(t.elapsed().as_secs_f64() * 1e3);
         gpu.queue.submit([cmd]);
@@ -342,12 +324,11 @@ fn frame(
     gpu.wait();
 
     // GPU time per model, interleaved so drift affects every model alike.
-    still.setup(&gpu, &assets, &close)?;
     let mut models: Vec<Option<ShadingModel>> =
         ShadingModel::ALL.iter().map(|m| Some(*m)).collect();
     models.push(None);
     let gpu_ms = if gpu.timestamps {
-        time_models(&gpu, &mut still, &models, rounds, || {
+        time_models(&gpu, (&mut still, &assets), &close, &models, rounds, || {
             progress.step("GPU rounds")
         })?
     } else {
@@ -366,11 +347,15 @@ fn frame(
     let (blob_pixels, blob_ms) = if still.enable_blob_shadows(&gpu) {
         let pixels = blob_shadow_coverage(&gpu, &mut still, &assets, &close)?;
         progress.step("blob shadows framed");
-        still.setup(&gpu, &assets, &close)?;
         let ms = if gpu.timestamps {
-            time_blob_shadows(&gpu, &mut still, &blob_models, rounds, || {
-                progress.step("blob-shadow rounds")
-            })?
+            time_blob_shadows(
+                &gpu,
+                (&mut still, &assets),
+                &close,
+                &blob_models,
+                rounds,
+                || progress.step("blob-shadow rounds"),
+            )?
         } else {
             Vec::new()
         };

@@ -50,7 +50,7 @@ pub fn run(args: EffectsArgs) -> Result<(), String> {
     let (w, h) = args.size;
     let mut gg = GameGpu::new(&gpu, OFFSCREEN_FORMAT, &assets, ShadingModel::DEFAULT)?;
     // Every pipeline in place before the first measured frame.
-    gg.finish_loading();
+    gg.finish_loading(&gpu);
     let target = Offscreen::new(&gpu, w, h);
     let mut session = Session::new(&assets.character, 1, None, true);
     session.settings.set_shading_model(args.shading);

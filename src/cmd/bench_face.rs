@@ -1,33 +1,41 @@
 //! `dermis bench face`: every shading model on the scanned head, scored against the cached
-//! Mitsuba 3 references (`tools/mitsuba/face/`): mean |ln(model/reference)| over the skin
-//! blocks above the reference's noise, |ln| of the integrated radiance, and ꟻLIP on the
-//! tone-mapped pair, per light (front, side across the nose, back through the ear).
+//! face truth (`tools/reference/face/`, the project's Monte Carlo on the head mesh): mean
+//! |ln(model/truth)| over the head's blocks where the truth is precise, |ln| of the
+//! integrated radiance, and ꟻLIP on the tone-mapped pair, per light (front, side across the
+//! nose, back through the ear).
 
 use std::path::PathBuf;
 
-use dermis_core::face::head::{self, HeadRenderer};
+use dermis_core::face::head::{self, FaceLight, HeadRenderer};
 use dermis_core::face::pfm::FloatImage;
 use dermis_core::render::Gpu;
 use dermis_core::shading::{material::SKIN1, Material, ShadingModel};
-use dermis_measure::face::cache::Cache;
-use dermis_measure::face::score::{tone_map, Reference};
+use dermis_measure::face::regions::block_regions;
+use dermis_measure::face::score::{tone_map, Reference, BLOCK, MAX_REL_SE, WIDE_REL_SE};
+use dermis_measure::face::truth::FaceScene;
+use dermis_measure::face::truth_cache::{self, CachedTruth};
 use serde_json::json;
 
 use crate::cmd::args::check_out_dir;
+use crate::cmd::face_diagnosis::Diagnosis;
 
 #[derive(clap::Args, Debug)]
 pub struct FaceArgs {
     /// Directory for face.json, face.md and the tone-mapped images (checked first).
     #[arg(long)]
     pub out: PathBuf,
-    /// The cached references (default: the source tree's tools/mitsuba/face).
+    /// The cached truth (default: the source tree's tools/reference/face).
     #[arg(long)]
     pub cache: Option<PathBuf>,
+    /// Render the head without its normal map (the truth's smooth mesh), to tell the map's
+    /// share of the error.
+    #[arg(long)]
+    pub no_normal_map: bool,
 }
 
 /// The default cache directory.
 pub fn default_cache() -> PathBuf {
-    PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/tools/mitsuba/face"))
+    PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/tools/reference/face"))
 }
 
 /// ꟻLIP's mean error over the head's pixels, on the pair tone-mapped at `exposure`; `None`
@@ -73,22 +81,35 @@ fn exposure(front: &Reference, alpha: &[f32]) -> f32 {
     (0.35 / (sum / n.max(1) as f64).max(1e-9)) as f32
 }
 
+/// Median and 95th percentile of the truth's relative SE over its scored block channels, and
+/// their count.
+type Quantiles = (f64, f64, usize);
+
 /// One model's mean |ln(model/reference)| per light (name, error).
 pub type FaceScore = (ShadingModel, Vec<(String, f64)>);
 
-/// Each model's mean |ln(model/reference)| on the head under the cached references' lights
+/// The face scene as the engine has it and its cached truths under the three named lights.
+fn load_truths(
+    dir: &std::path::Path,
+) -> Result<(FaceScene, Vec<(FaceLight, CachedTruth)>), String> {
+    let scene = FaceScene::head(&crate::paths::assets_dir())?;
+    let truths = truth_cache::load_named(dir, &scene)?;
+    Ok((scene, truths))
+}
+
+/// Each model's mean |ln(model/truth)| on the head under the cached truths' lights
 /// (front, side, back), for `bench shading`'s face column.
 pub fn face_scores(gpu: &Gpu) -> Result<Vec<FaceScore>, String> {
-    let dir = default_cache();
-    let cache = Cache::load(&dir)?;
+    let (scene, truths) = load_truths(&default_cache())?;
     let model = head::load(&crate::paths::assets_dir(), false).map_err(|e| e.to_string())?;
-    let (w, h) = (cache.scene.camera.width, cache.scene.camera.height);
+    let (w, h) = (scene.width, scene.height);
     let mut renderer = HeadRenderer::new(gpu, &model, &SKIN1, w, h, true)?;
     let camera = head::camera();
     let mut out = Vec::new();
     for shading in ShadingModel::ALL {
         let mut per_light = Vec::new();
-        for (light, reference) in &cache.references {
+        for (light, truth) in &truths {
+            let reference = &truth.reference;
             let pixels = renderer.radiance(
                 gpu,
                 shading,
@@ -107,105 +128,142 @@ pub fn face_scores(gpu: &Gpu) -> Result<Vec<FaceScore>, String> {
 pub fn run(args: FaceArgs) -> Result<(), String> {
     check_out_dir(&args.out)?;
     let dir = args.cache.unwrap_or_else(default_cache);
-    let cache = Cache::load(&dir)?;
-    let material = Material::preset(&cache.scene.medium.name)
-        .filter(|m| *m == SKIN1)
-        .ok_or("the cached references are not skin1's (the only material cached)")?;
-    let alpha: Vec<f32> = FloatImage::load(&dir.join("alpha.pfm"))?
-        .pixels
-        .iter()
-        .map(|p| p[0])
-        .collect();
-    let model = head::load(&crate::paths::assets_dir(), false).map_err(|e| e.to_string())?;
+    let scene = FaceScene::head(&crate::paths::assets_dir())?;
+    let truths = truth_cache::load_all(&dir, &scene)?;
+    if truths.is_empty() {
+        return Err(format!("{}: no light cached", dir.display()));
+    }
+    let material: Material = scene.material.clone();
+    let alpha = truth_cache::load_alpha(&dir)?;
+    let maps = head::Maps {
+        albedo: false,
+        normal: !args.no_normal_map,
+    };
+    let model = head::load_with(&crate::paths::assets_dir(), maps).map_err(|e| e.to_string())?;
     let gpu = Gpu::headless().map_err(|e| e.to_string())?;
-    let (w, h) = (cache.scene.camera.width, cache.scene.camera.height);
+    let (w, h) = (scene.width, scene.height);
     let mut renderer = HeadRenderer::new(&gpu, &model, &material, w, h, true)?;
     let camera = head::camera();
-    let exposure = exposure(&cache.references[0].1, &alpha);
-    for (light, reference) in &cache.references {
+    let exposure = exposure(&truths[0].1.reference, &alpha);
+    for (_, truth) in &truths {
         let path = args
             .out
-            .join(format!("face-{}-reference.png", light.name()));
-        save_png(&path, &reference.full, exposure)?;
+            .join(format!("face-{}-reference.png", truth.record.name));
+        save_png(&path, &truth.reference.full, exposure)?;
     }
+    let regions = block_regions(&scene, BLOCK)?;
     let mut rows = Vec::new();
+    let mut diagnosis = Diagnosis::default();
     for shading in ShadingModel::ALL {
         let mut per_light = Vec::new();
-        for (light, reference) in &cache.references {
-            let pixels = renderer.radiance(
-                &gpu,
-                shading,
-                &camera,
-                light.position(),
-                head::LIGHT_INTENSITY,
-            )?;
+        for (position, truth) in &truths {
+            let reference = &truth.reference;
+            let light = truth.record.name.as_str();
+            let pixels =
+                renderer.radiance(&gpu, shading, &camera, *position, truth.record.intensity)?;
             let image = FloatImage::new(w, h, pixels)?;
             let score = reference.score(&image)?;
+            let wide = reference.clone().with_max_rel_se(WIDE_REL_SE);
+            let wide_score = wide.score(&image)?;
             let flip = flip_mean(&image, reference, exposure, &alpha);
-            let name = format!("face-{}-{}", light.name(), shading.name());
+            let name = format!("face-{light}-{}", shading.name());
             save_png(&args.out.join(format!("{name}.png")), &image, exposure)?;
-            per_light.push((light.name(), score, flip));
+            diagnosis.add(&args.out, shading, light, &wide, &image, &regions)?;
+            per_light.push((light, score, flip, wide_score));
         }
         rows.push((shading, per_light));
     }
-    let noise: Vec<(String, f64, usize)> = cache
-        .references
+    // The truth's own noise: relative standard error of the scored block channels (median,
+    // 95th percentile) and how many there are.
+    // Per light: name, then (median, 95th percentile, count) under the bar and the wide bar.
+    let quantiles = |rel: Vec<f64>| {
+        let q = |p: f64| rel.get(((rel.len().max(1) - 1) as f64 * p).round() as usize);
+        let q = |p| q(p).copied().unwrap_or(f64::NAN);
+        (q(0.5), q(0.95), rel.len())
+    };
+    let noise: Vec<(String, Quantiles, Quantiles)> = truths
         .iter()
-        .map(|(l, r)| {
-            let n = r.mask.iter().flatten().filter(|k| **k).count();
-            (l.name().to_string(), r.relative_noise(), n)
+        .map(|(_, t)| {
+            let wide = t.reference.clone().with_max_rel_se(WIDE_REL_SE);
+            (
+                t.record.name.clone(),
+                quantiles(t.reference.relative_errors()),
+                quantiles(wide.relative_errors()),
+            )
         })
         .collect();
-    let rec = &cache.record;
     let report = json!({
-        "reference": {
-            "mitsuba": rec.mitsuba, "variant": rec.variant, "integrator": rec.integrator,
-            "boundary": rec.boundary, "spp_per_channel_per_seed": rec.spp, "seeds": rec.seeds,
-            "render_seconds": rec.renders.iter().map(|(k, r)| (k.clone(), json!({
-                "seed1": r.seed1_s, "seed2": r.seed2_s, "specular": r.specular_s
+        "truth": {
+            "method": dermis_measure::face::truth::METHOD,
+            "lights": truths.iter().map(|(_, t)| (t.record.name.clone(), json!(t.record)))
+                .collect::<serde_json::Map<_, _>>(),
+            "relative_se": noise.iter().map(|(l, (m, p, c), (wm, wp, wc))| (l.clone(), json!({
+                "median": m, "p95": p, "scored_block_channels": c,
+                "wide": {"median": wm, "p95": wp, "scored_block_channels": wc},
             }))).collect::<serde_json::Map<_, _>>(),
-            "relative_noise": noise.iter().map(|(l, n, c)| (l.clone(), json!({
-                "mean_relative_se": n, "scored_block_channels": c
-            }))).collect::<serde_json::Map<_, _>>(),
-            "size": [w, h], "block": dermis_measure::face::score::BLOCK,
+            "max_relative_se_scored": MAX_REL_SE,
+            "wide_max_relative_se": WIDE_REL_SE,
+            "size": [w, h], "block": BLOCK,
             "attribution": head::ATTRIBUTION,
         },
         "exposure": exposure,
         "adapter": gpu.adapter_name(),
         "models": rows.iter().map(|(m, per)| json!({
             "model": m.name(),
-            "lights": per.iter().map(|(l, s, f)| json!({
+            "lights": per.iter().map(|(l, s, f, ws)| json!({
                 "light": l, "mean_abs_ln": s.mean_abs_ln, "integrated_abs_ln": s.integrated,
                 "flip": f, "block_channels": s.count,
+                "wide": {"mean_abs_ln": ws.mean_abs_ln, "integrated_abs_ln": ws.integrated,
+                         "block_channels": ws.count},
             })).collect::<Vec<_>>(),
-            "face": per.iter().map(|(_, s, _)| s.mean_abs_ln).sum::<f64>() / per.len() as f64,
-            "flip": per.iter().map(|(_, _, f)| *f).sum::<Option<f64>>().map(|s| s / per.len() as f64),
+            "face": per.iter().map(|p| p.1.mean_abs_ln).sum::<f64>() / per.len() as f64,
+            "flip": per.iter().map(|p| p.2).sum::<Option<f64>>().map(|s| s / per.len() as f64),
         })).collect::<Vec<_>>(),
+        "diagnosis": diagnosis.json,
     });
-    let mut md = String::from(
-        "| model | front | side | back | face (mean) | integrated front/side/back | ꟻLIP front/side/back |\n\
-         |---|---|---|---|---|---|---|\n",
+    let names: Vec<&str> = noise.iter().map(|n| n.0.as_str()).collect();
+    let slash = names.join("/");
+    let cells = |f: &dyn Fn(usize) -> String| -> String {
+        (0..names.len()).map(|i| format!(" {} |", f(i))).collect()
+    };
+    let mut md = format!(
+        "| model |{} face (mean) | integrated {slash} | ꟻLIP {slash} |\n|---|{}---|---|---|\n",
+        cells(&|i| names[i].to_string()),
+        "---|".repeat(names.len())
     );
     md += &format!(
-        "| *reference rel. SE* | {:.3} | {:.3} | {:.3} | | | |\n",
-        noise[0].1, noise[1].1, noise[2].1
+        "| *truth rel. SE (median / 95th pct.)* |{} | | |\n",
+        cells(&|i| format!("{:.4} / {:.4}", noise[i].1 .0, noise[i].1 .1))
+    );
+    md += &format!(
+        "| *scored block channels* |{} | | |\n",
+        cells(&|i| noise[i].1 .2.to_string())
+    );
+    let mut wide_md = format!(
+        "| model |{} mean |\n|---|{}---|\n| *truth rel. SE (median / 95th pct.)* |{} |\n\
+         | *scored block channels* |{} |\n",
+        cells(&|i| names[i].to_string()),
+        "---|".repeat(names.len()),
+        cells(&|i| format!("{:.4} / {:.4}", noise[i].2 .0, noise[i].2 .1)),
+        cells(&|i| noise[i].2 .2.to_string()),
     );
     let flip = |f: &Option<f64>| f.map_or("–".to_string(), |f| format!("{f:.3}"));
     for (m, per) in &rows {
-        let face = per.iter().map(|(_, s, _)| s.mean_abs_ln).sum::<f64>() / per.len() as f64;
-        md += &format!(
-            "| {} | {:.3} | {:.3} | {:.3} | {:.3} | {:.2} / {:.2} / {:.2} | {} / {} / {} |\n",
+        let face = per.iter().map(|p| p.1.mean_abs_ln).sum::<f64>() / per.len() as f64;
+        let wide = per.iter().map(|p| p.3.mean_abs_ln).sum::<f64>() / per.len() as f64;
+        wide_md += &format!(
+            "| {} |{} {wide:.3} |\n",
             m.name(),
-            per[0].1.mean_abs_ln,
-            per[1].1.mean_abs_ln,
-            per[2].1.mean_abs_ln,
-            face,
-            per[0].1.integrated,
-            per[1].1.integrated,
-            per[2].1.integrated,
-            flip(&per[0].2),
-            flip(&per[1].2),
-            flip(&per[2].2)
+            cells(&|i| format!("{:.3}", per[i].3.mean_abs_ln))
+        );
+        let join =
+            |f: &dyn Fn(usize) -> String| (0..per.len()).map(f).collect::<Vec<_>>().join(" / ");
+        md += &format!(
+            "| {} |{} {face:.3} | {} | {} |\n",
+            m.name(),
+            cells(&|i| format!("{:.3}", per[i].1.mean_abs_ln)),
+            join(&|i| format!("{:.3}", per[i].1.integrated)),
+            join(&|i| flip(&per[i].2)),
         );
     }
     let write = |name: &str, text: &str| {
@@ -216,13 +274,18 @@ pub fn run(args: FaceArgs) -> Result<(), String> {
         "face.json",
         &(serde_json::to_string_pretty(&report).map_err(|e| e.to_string())? + "\n"),
     )?;
+    md += &format!(
+        "\nThe same, scored wherever the truth's relative SE ≤ {WIDE_REL_SE} (the dimmer blocks \
+         too: the terminator, the eye sockets, the back light's rim):\n\n{wide_md}"
+    );
     write("face.md", &md)?;
+    write("diagnosis.md", &diagnosis.markdown())?;
     println!(
-        "face scenes: skin1 head {w}x{h}, Mitsuba {} {} spp per channel and seed; errors: mean \
-         |ln(model/reference)| over {}² blocks above the reference's noise\n{md}{}",
-        rec.mitsuba,
-        rec.spp,
-        dermis_measure::face::score::BLOCK,
+        "face scenes: skin1 head {w}x{h} against the Monte Carlo truth ({:?} photons per \
+         channel, front light); errors: mean |ln(model/truth)| over {}² blocks where the truth's relative \
+         SE ≤ {MAX_REL_SE}\n{md}{}",
+        truths[0].1.record.photons_per_channel,
+        BLOCK,
         head::ATTRIBUTION
     );
     Ok(())
@@ -251,7 +314,7 @@ mod tests {
         let px =
             |v: f32| FloatImage::new(w, h, vec![[v, v * 0.8, v * 0.6]; (w * h) as usize]).unwrap();
         let alpha = vec![1.0; (w * h) as usize];
-        let reference = Reference::from_seeds(&px(0.5), &px(0.5), &alpha, 4).unwrap();
+        let reference = Reference::from_truth(&px(0.5), &px(0.01), &alpha, 4).unwrap();
         let same = flip_mean(&px(0.5), &reference, 1.0, &alpha).unwrap();
         let darker = flip_mean(&px(0.2), &reference, 1.0, &alpha).unwrap();
         assert!(same < 1e-6 && darker > 0.05, "{same} {darker}");

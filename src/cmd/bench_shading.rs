@@ -18,9 +18,9 @@ use crate::cmd::args::{check_out_dir, parse_rounds};
 use crate::cmd::progress::Progress;
 use dermis_core::anim::Pose;
 use dermis_core::asset::shapes::plane_model;
-use dermis_core::render::{
-    DrawSet, FrameView, Gpu, Light, Offscreen, PassTimer, Renderer, OFFSCREEN_FORMAT,
-};
+use dermis_core::asset::Model;
+use dermis_core::render::{Gpu, Offscreen, PassCtx, PassTimer, Renderer, OFFSCREEN_FORMAT};
+use dermis_core::scene::{DrawSet, FramePacket, FrameView, Light, Roles, SubjectPose};
 use dermis_core::shading::{subsurface, Material, ShadingModel};
 use dermis_measure::ground_truth::metric::score;
 use dermis_measure::ground_truth::{self, ReferenceSet};
@@ -63,7 +63,7 @@ fn prepare(args: &ShadingArgs) -> Result<(References, Option<Value>), String> {
     let dir = ground_truth::default_dir();
     let sets = ground_truth::acceptance_materials()
         .into_iter()
-        .map(|m| ReferenceSet::load(&ground_truth::file_for(&dir, m.name)).map(|s| (m, s)))
+        .map(|m| ReferenceSet::load(&ground_truth::file_for(&dir, &m.name)).map(|s| (m, s)))
         .collect::<Result<Vec<_>, _>>()?;
     let mali = match &args.mali {
         Some(path) => Some(read_cycles(path)?),
@@ -105,7 +105,7 @@ pub fn run(args: ShadingArgs) -> Result<(), String> {
                     .render(&gpu, model, material, &entry.scene, &entry.edges)
                     .map(|rendered| score(&rendered, entry));
                 scores[i].push(SceneScore {
-                    material: material.name,
+                    material: material.name.to_string(),
                     scene: entry.scene,
                     result,
                 });
@@ -116,8 +116,8 @@ pub fn run(args: ShadingArgs) -> Result<(), String> {
     drop(probe);
 
     // Cost (a): this adapter's GPU time of the full-screen pass.
-    let material = sets[0].0;
-    let cost = CostScene::new(&gpu, &material)?;
+    let material = sets[0].0.clone();
+    let mut cost = CostScene::new(&gpu, &material)?;
     progress.step("cost scene");
     let coverage = cost.coverage(&gpu);
     let mut timed: Vec<Option<ShadingModel>> = models.iter().map(|m| Some(*m)).collect();
@@ -167,6 +167,8 @@ struct CostScene {
     renderer: Renderer,
     target: Offscreen,
     timer: Option<PassTimer>,
+    patch: (Model, Pose),
+    view: FrameView,
 }
 
 impl CostScene {
@@ -178,49 +180,64 @@ impl CostScene {
         let half_h = half_w * h as f32 / w as f32;
         // 5 mm thick (translucency terms see a thin part), reaching well past the view.
         let model = plane_model(2.0 * half_w, 0.005);
-        renderer.load_character(gpu, &model, material)?;
+        renderer.load_character(gpu, &model, &Roles::medium(material))?;
+        renderer.resize(gpu, (w, h));
         let mut pose = Pose::new(&model);
         pose.update_world(&model);
-        renderer.update_character(&gpu.queue, &model, &pose, Mat4::IDENTITY);
         let view = glam::camera::rh::view::look_at_mat4(Vec3::Y, Vec3::ZERO, Vec3::Z);
         let proj = glam::camera::rh::proj::directx::orthographic(
             -half_w, half_w, -half_h, half_h, 0.01, 10.0,
         );
-        renderer.prepare(
-            &gpu.queue,
-            &FrameView {
-                view_proj: proj * view,
-                camera_pos: Vec3::Y,
-                light: Light {
-                    position: Vec3::new(0.02, 0.05, 0.01),
-                    intensity: 0.01,
-                    color: Vec3::ONE,
-                    ambient: Vec3::splat(0.02),
-                },
-                exposure: 1.0,
+        let view = FrameView {
+            view_proj: proj * view,
+            camera_pos: Vec3::Y,
+            light: Light {
+                position: Vec3::new(0.02, 0.05, 0.01),
+                intensity: 0.01,
+                color: Vec3::ONE,
+                ambient: Vec3::splat(0.02),
             },
-        );
+            exposure: 1.0,
+        };
         let timer = PassTimer::new(&gpu.device, &gpu.queue);
         Ok(Self {
             renderer,
             target,
             timer,
+            patch: (model, pose),
+            view,
         })
     }
 
-    fn encode(&self, gpu: &Gpu, shading: Option<ShadingModel>, character: bool, timed: bool) {
-        let mut encoder = gpu
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+    fn encode(&mut self, gpu: &Gpu, shading: Option<ShadingModel>, character: bool, timed: bool) {
         let draw = DrawSet {
             shading,
             character,
             props: false,
+            ui: false,
         };
-        let timer = self.timer.as_ref().filter(|_| timed);
         let t = &self.target;
-        self.renderer
-            .encode(&mut encoder, &t.targets, &t.view, draw, None, timer);
+        let (model, pose) = &self.patch;
+        let packet = FramePacket {
+            subject: Some(SubjectPose {
+                model,
+                pose,
+                world: Mat4::IDENTITY,
+            }),
+            ..FramePacket::new((t.targets.width, t.targets.height), self.view, draw)
+        };
+        let frame = self.renderer.prepare(gpu, &packet);
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        let timer = self.timer.as_ref().filter(|_| timed);
+        self.renderer.encode(
+            &frame,
+            &mut PassCtx {
+                encoder: &mut encoder,
+                targets: &t.targets,
+                output: &t.view,
+                timer,
+            },
+        );
         if let Some(timer) = timer {
             timer.resolve(&mut encoder);
         } else {
@@ -230,13 +247,13 @@ impl CostScene {
     }
 
     /// GPU time (ms) of one frame drawn with `shading` (`None`: unlit).
-    fn time(&self, gpu: &Gpu, shading: Option<ShadingModel>) -> Option<f64> {
+    fn time(&mut self, gpu: &Gpu, shading: Option<ShadingModel>) -> Option<f64> {
         self.encode(gpu, shading, true, true);
         self.timer.as_ref()?.read_ms(&gpu.device)
     }
 
     /// Fraction of the target the skin covers (Ward against the empty frame).
-    fn coverage(&self, gpu: &Gpu) -> f64 {
+    fn coverage(&mut self, gpu: &Gpu) -> f64 {
         self.encode(gpu, None, false, false);
         let empty = self.target.read(gpu);
         self.encode(gpu, Some(ShadingModel::BASELINE), true, false);

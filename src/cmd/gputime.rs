@@ -24,7 +24,7 @@ pub fn frame_close_up(
             &Shot {
                 shading: Some(ShadingModel::BASELINE),
                 props: false,
-                ..*shot
+                ..shot.clone()
             },
         )?;
         let bg = &image.pixels[0..3];
@@ -41,24 +41,31 @@ pub fn frame_close_up(
     Ok(coverage)
 }
 
-/// `rounds` timings (ms) of the character pass for each of `models` (`None`: unlit).
+/// `rounds` timings (ms) of `shot`'s character pass (no props) for each of `models`
+/// (`None`: unlit).
 pub fn time_models(
     gpu: &Gpu,
-    still: &mut StillRenderer,
+    (still, assets): (&mut StillRenderer, &SceneAssets),
+    shot: &Shot,
     models: &[Option<ShadingModel>],
     rounds: usize,
     mut tick: impl FnMut(),
 ) -> Result<Vec<Vec<f64>>, String> {
+    let with = |shading| Shot {
+        shading,
+        props: false,
+        ..shot.clone()
+    };
     let mut out = vec![Vec::with_capacity(rounds); models.len()];
     for _ in 0..3 {
-        still.time_character_pass(gpu, Some(ShadingModel::BASELINE));
+        still.time_pass(gpu, assets, &with(Some(ShadingModel::BASELINE)));
     }
     for r in 0..rounds {
         for k in 0..models.len() {
             let i = (k + r) % models.len();
             out[i].push(
                 still
-                    .time_character_pass(gpu, models[i])
+                    .time_pass(gpu, assets, &with(models[i]))
                     .ok_or("timestamp read failed")?,
             );
         }
@@ -73,15 +80,21 @@ pub fn time_models(
 /// ([`StillRenderer::enable_blob_shadows`]); they are left on.
 pub fn time_blob_shadows(
     gpu: &Gpu,
-    still: &mut StillRenderer,
+    (still, assets): (&mut StillRenderer, &SceneAssets),
+    shot: &Shot,
     models: &[ShadingModel],
     rounds: usize,
     mut tick: impl FnMut(),
 ) -> Result<Vec<[Vec<f64>; 2]>, String> {
+    let with = |model| Shot {
+        shading: Some(model),
+        props: true,
+        ..shot.clone()
+    };
     let mut out = vec![[Vec::with_capacity(rounds), Vec::with_capacity(rounds)]; models.len()];
     for on in [false, true] {
         still.renderer.set_blob_shadows(on);
-        still.time_pass(gpu, Some(ShadingModel::BASELINE), true);
+        still.time_pass(gpu, assets, &with(ShadingModel::BASELINE));
     }
     for r in 0..rounds {
         for k in 0..models.len() {
@@ -91,7 +104,7 @@ pub fn time_blob_shadows(
                 still.renderer.set_blob_shadows(on);
                 out[i][usize::from(on)].push(
                     still
-                        .time_pass(gpu, Some(models[i]), true)
+                        .time_pass(gpu, assets, &with(models[i]))
                         .ok_or("timestamp read failed")?,
                 );
             }
@@ -113,7 +126,7 @@ pub fn blob_shadow_coverage(
 ) -> Result<f64, String> {
     let shot = Shot {
         props: true,
-        ..*shot
+        ..shot.clone()
     };
     still.renderer.set_blob_shadows(false);
     let off = still.render(gpu, assets, &shot)?;

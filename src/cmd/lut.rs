@@ -31,7 +31,7 @@ pub fn run(args: LutArgs) -> Result<(), String> {
     let budget = bake::DEFAULT_BUDGET;
     let materials: Vec<_> = PRESETS
         .iter()
-        .flat_map(|m| [*m, ground_truth::acceptance_material(m)])
+        .flat_map(|m| [m.clone(), ground_truth::acceptance_material(m)])
         .collect();
     let steps = if args.tables_only { 1 } else { 2 };
     eprintln!(

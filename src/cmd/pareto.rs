@@ -11,7 +11,7 @@ use serde_json::{json, Value};
 
 /// One scene's score for one model (or why it has none).
 pub struct SceneScore {
-    pub material: &'static str,
+    pub material: String,
     pub scene: Scene,
     pub result: Result<ErrorStats, String>,
 }

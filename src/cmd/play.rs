@@ -77,7 +77,7 @@ pub fn run(args: PlayArgs) -> Result<(), String> {
     let (w, h) = args.size;
     let mut gg = GameGpu::new(&gpu, OFFSCREEN_FORMAT, &assets, ShadingModel::DEFAULT)?;
     // Every pipeline in place before the first measured frame.
-    gg.finish_loading();
+    gg.finish_loading(&gpu);
     let target = Offscreen::new(&gpu, w, h);
     let mut session = Session::new(&assets.character, args.seed, None, args.autoplay);
     if let Some(m) = args.shading {
@@ -157,7 +157,7 @@ pub fn run(args: PlayArgs) -> Result<(), String> {
             continue;
         }
         cpu_ms.push((times.submitted - times.start).as_secs_f64() * 1e3);
-        uploads.push(session.uploads as f64);
+        uploads.push(gg.last_frame().map_or(0, |f| f.uploads) as f64);
         let a = times.allocs;
         dermis_allocs.push((a.updated - a.start) as f64);
         wgpu_allocs.push((a.submitted - a.updated) as f64);

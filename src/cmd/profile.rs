@@ -84,7 +84,7 @@ pub fn validate(args: &ProfileArgs) -> Result<Request, String> {
         material: Material {
             eta,
             g,
-            ..args.material
+            ..args.material.clone()
         },
         h_mm: h,
         edges,

@@ -1,21 +1,35 @@
 //! `dermis reference`: generates the path-traced reference data set
-//! (`tools/reference/<material>.json`, see `dermis_measure::ground_truth`).
+//! (`tools/reference/<material>.json`, see `dermis_measure::ground_truth`), or with
+//! `--scene head` the face truth (`reference_head.rs`).
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use crate::cmd::args::{check_out_dir, parse_reference_photons, parse_seed, parse_threads};
+use crate::cmd::args::{
+    check_out_dir, parse_reference_photons, parse_seed, parse_threads, parse_vec3,
+};
 use crate::cmd::progress::Progress;
 use dermis_core::shading::material::{Material, SKIN1, WHITE_COAT};
 use dermis_measure::ground_truth::{self, ReferenceSet};
 
 #[derive(clap::Args, Debug)]
 pub struct ReferenceArgs {
-    /// Output directory; writes <material>.json there.
+    /// Output directory; writes <material>.json there (`--scene head`: <light>.pfm,
+    /// <light>-se.pfm, alpha.pfm and truth.json; tools/reference/face is the cache).
     #[arg(long)]
     pub out: PathBuf,
+    /// probes (the measurement scenes) | head (the scanned head in the face scenes' camera).
+    #[arg(long, default_value = "probes", value_parser = ["probes", "head"])]
+    pub scene: String,
+    /// `--scene head`: a point light at X,Y,Z [m, the head's frame] (written as `light`).
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub light: Option<glam::Vec3>,
+    /// `--scene head`: the face scenes' light(s): front | side | back | all (default: all,
+    /// unless --light).
+    #[arg(long, value_parser = ["front", "side", "back", "all"])]
+    pub face_light: Option<String>,
     /// Photons per channel and scene, 1000..=1e9 (default: per material, see
-    /// tools/reference/README.md).
+    /// tools/reference/README.md; `--scene head`: 8e6 for red, ×1.5 green, ×2.5 blue, per light).
     #[arg(long, value_parser = parse_reference_photons, allow_hyphen_values = true)]
     pub photons: Option<u64>,
     /// skin1 | white-coat | all.
@@ -33,7 +47,7 @@ pub struct ReferenceArgs {
 /// the bins that carry the light, within a few minutes per material on two cores (the white
 /// coat's near-unit albedo makes its walks ~20× longer than skin1's).
 pub fn default_photons(material: &Material) -> u64 {
-    match material.name {
+    match &*material.name {
         "white-coat" => 400_000,
         _ => 2_000_000,
     }
@@ -51,6 +65,12 @@ fn materials(name: &str) -> Result<Vec<Material>, String> {
 }
 
 pub fn run(args: ReferenceArgs) -> Result<(), String> {
+    if args.scene == "head" {
+        return super::reference_head::run(&args);
+    }
+    if args.light.is_some() || args.face_light.is_some() {
+        return Err("--light and --face-light need --scene head".into());
+    }
     let mats = materials(&args.material)?;
     let threads = args
         .threads
@@ -74,11 +94,11 @@ pub fn run(args: ReferenceArgs) -> Result<(), String> {
             args.seed
         );
         let start = Instant::now();
-        let set = with_progress(m.name, |progress| {
+        let set = with_progress(&m.name, |progress| {
             ReferenceSet::generate(m, &scenes, photons, args.seed, threads, progress)
         });
         let secs = start.elapsed().as_secs_f64();
-        let path = ground_truth::file_for(&args.out, m.name);
+        let path = ground_truth::file_for(&args.out, &m.name);
         set.save(&path)?;
         print_summary(&set, secs, &path);
     }

@@ -100,7 +100,7 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
         time: args.time,
         light: args.light,
         props: !args.no_props,
-        ..Shot::new(args.shading, args.material)
+        ..Shot::new(args.shading, args.material.clone())
     };
     progress.begin("rendering");
     if let Some(out) = &args.out {

@@ -4,7 +4,8 @@
 
 use dermis_core::face::head::{self, HeadRenderer};
 use dermis_core::face::pfm::FloatImage;
-use dermis_core::render::{Gpu, Light};
+use dermis_core::render::Gpu;
+use dermis_core::scene::Light;
 use dermis_measure::face::export;
 use glam::Vec3;
 

@@ -279,13 +279,14 @@ pub fn mali_cost(
 /// passes over the game's grid, for the game's key light and character (the frustum the
 /// renderer fits, so the same number of jumps).
 pub fn penumbra_grid_cycles(mali: &Value, gpu: &str) -> Option<f64> {
-    use dermis_core::render::{jump_steps, key_light, ShadowView, CHARACTER, PENUMBRA_BLOCK};
+    use dermis_core::render::{jump_steps, ShadowView, PENUMBRA_BLOCK};
+    use dermis_core::scene::{key_light, CHARACTER};
     let bound = |s: &str| mali["shaders"][s][gpu]["frag"]["bound"].as_f64();
     let size = dermis_core::render::SHADOW_MAP_SIZE;
     let (centre, radius) = CHARACTER.sphere_at(glam::Vec3::ZERO);
     let view = ShadowView::fit(key_light(glam::Vec3::ZERO).position, centre, radius, size);
     let grid = size / PENUMBRA_BLOCK;
-    let jumps = jump_steps(grid, view.texel_m * size as f32).len() as f64;
+    let jumps = jump_steps(grid, view.texel_m * size as f32).count() as f64;
     let texels = (grid * grid) as f64;
     Some(texels * (bound("penumbra_seed")? + jumps * bound("penumbra_jump")?))
 }

@@ -132,7 +132,7 @@ pub fn run(args: SoakArgs) -> Result<(), String> {
     let (w, h) = args.size;
     let mut gg = GameGpu::new(&gpu, OFFSCREEN_FORMAT, &assets, ShadingModel::DEFAULT)?;
     // Every pipeline in place before the first measured frame.
-    gg.finish_loading();
+    gg.finish_loading(&gpu);
     setup.finish();
     let target = Offscreen::new(&gpu, w, h);
     let mut session = Session::new(&assets.character, args.seed, None, true);

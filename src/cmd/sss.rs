@@ -95,7 +95,7 @@ pub fn run(args: SssArgs) -> Result<(), String> {
     let material = Material {
         eta,
         g: args.g,
-        ..args.material
+        ..args.material.clone()
     };
     // Steps: the Monte Carlo runs, then the models' predictions (the spatial models measure
     // their tables for a material met for the first time).

@@ -164,6 +164,16 @@ pub const ROWS: &[Row] = &[
         &["--out", "{tmp}/reference"],
     ),
     row("reference", "seed", Kind::Count),
+    row("reference", "scene", Kind::Name),
+    row("reference", "face-light", Kind::Name),
+    row(
+        "reference",
+        "light",
+        Kind::Vec3 {
+            good_negative: "-0.5",
+            bad_negative: "-1e5",
+        },
+    ),
     row("reference", "threads", Kind::Count),
     row("lut", "out", Kind::OutDir),
     row("lut", "tables-only", Kind::Switch),
@@ -197,6 +207,7 @@ pub const ROWS: &[Row] = &[
         Kind::InFile,
         &["--out", "{tmp}/face"],
     ),
+    row("bench face", "no-normal-map", Kind::Switch),
     row("bench shading", "out", Kind::OutDir),
     row("bench shading", "rounds", Kind::Count),
     with(

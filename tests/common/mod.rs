@@ -5,8 +5,9 @@
 use std::path::Path;
 
 use dermis_core::app::{GameGpu, Session, Viewport};
-use dermis_core::render::{DrawSet, Gpu, Offscreen, RgbaImage, OFFSCREEN_FORMAT};
-use dermis_core::scene::SceneAssets;
+use dermis_core::game::Screen;
+use dermis_core::render::{Gpu, Offscreen, RgbaImage, OFFSCREEN_FORMAT};
+use dermis_core::scene::{FramePacket, FrameView, SceneAssets};
 use dermis_core::shading::ShadingModel;
 use dermis_core::ui::Insets;
 
@@ -16,6 +17,8 @@ pub struct Rig {
     pub gg: GameGpu,
     pub target: Offscreen,
     pub session: Session,
+    /// A test's own camera for every frame it prepares (`None`: the game's).
+    pub camera: Option<FrameView>,
 }
 
 impl Rig {
@@ -39,6 +42,7 @@ impl Rig {
             gg,
             target,
             session,
+            camera: None,
         }
     }
 
@@ -52,26 +56,52 @@ impl Rig {
         }
     }
 
-    /// Advances the session by `dt` seconds and uploads the frame, as the shells do.
+    /// Advances the session by `dt` seconds and prepares the frame, as the shells do.
+    #[allow(dead_code)] // Not every test binary that shares the rig advances the game.
     pub fn update(&mut self, dt: f32) {
         let viewport = self.viewport();
         // As the shells' game frame does: the head's option where the head was uploaded.
         self.session.gui.offer_head(self.gg.has_head());
         self.session.update(dt, &self.assets.character, viewport);
-        self.gg
-            .upload(&self.gpu.queue, &mut self.session, &self.assets.character);
+        self.prepare(|_| {});
     }
 
-    /// The uploaded frame without the UI, the character drawn or not, read back.
+    /// Prepares the session's frame (the moment last updated) as the game frame does, after
+    /// `edit` changed its packet (what a test leaves out).
+    pub fn prepare(&mut self, edit: impl FnOnce(&mut FramePacket)) {
+        self.gg.renderer.resize(
+            &self.gpu,
+            (self.target.targets.width, self.target.targets.height),
+        );
+        let settled = self.session.game.screen() == Screen::Play;
+        let head = self.gg.head.clone();
+        let mut packet = self
+            .session
+            .extract(&self.assets.character, head.as_deref(), settled);
+        if let Some(view) = self.camera {
+            packet.view = view;
+        }
+        edit(&mut packet);
+        self.gg.prepare(&self.gpu, &packet);
+    }
+
+    /// The frame last updated without the UI, the character drawn or not, read back.
     #[allow(dead_code)] // Not every test binary that shares the rig shoots frames.
     pub fn shoot_frame(&mut self, character: bool) -> RgbaImage {
-        let draw = DrawSet {
-            character,
-            ..self.session.draw_set()
-        };
+        self.prepare(|p| {
+            p.draw.character = character;
+            p.draw.ui = false;
+        });
+        self.draw()
+    }
+
+    /// Draws the frame prepared last (with the UI it says) and reads it back.
+    #[allow(dead_code)] // Not every test binary that shares the rig draws frames.
+    pub fn draw(&mut self) -> RgbaImage {
+        let frame = self.gg.last_frame().expect("a frame was prepared");
         self.gg
             .renderer
-            .draw_offscreen(&self.gpu, &self.target, draw);
+            .draw_offscreen(&self.gpu, &self.target, frame);
         self.target.read(&self.gpu)
     }
 }

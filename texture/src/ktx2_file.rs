@@ -180,7 +180,8 @@ impl BlockImage {
         self.levels.iter().map(|l| l.len() as u64).sum()
     }
 
-    /// Checks that this encoding can stand for `role` (colour space and alpha).
+    /// Checks that this encoding can stand for `role`: its colour space. (Its alpha is the
+    /// encoder's choice: kept where the image has any, else RGB reading 255, as the image.)
     pub fn check_role(&self, role: TextureRole) -> Result<(), String> {
         if self.srgb != role.srgb() {
             let (is, want) = match self.srgb {
@@ -189,13 +190,6 @@ impl BlockImage {
             };
             return Err(format!(
                 "{:?} is {is} but a {} texture is {want}",
-                self.format,
-                role.name()
-            ));
-        }
-        if role.alpha() && !self.format.alpha() {
-            return Err(format!(
-                "{:?} has no alpha for the {} texture's skin mask",
                 self.format,
                 role.name()
             ));
@@ -256,10 +250,12 @@ mod tests {
     #[test]
     fn roles_and_colour_spaces() {
         let img = sample(BlockFormat::Etc2Rgb8);
-        assert!(img.check_role(TextureRole::BaseColor).is_ok());
-        assert!(img.check_role(TextureRole::BaseColorMasked).is_err());
-        assert!(img.check_role(TextureRole::Normal).is_err());
-        assert!(TextureRole::ALL.iter().filter(|r| r.srgb()).count() == 3);
+        assert!(img.check_role(TextureRole::Colour).is_ok());
+        assert!(img.check_role(TextureRole::Data).is_err());
+        assert_eq!(TextureRole::of_srgb(true), TextureRole::Colour);
+        assert!(TextureRole::ALL
+            .iter()
+            .all(|&r| TextureRole::of_srgb(r.srgb()) == r));
     }
 
     #[test]

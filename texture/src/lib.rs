@@ -1,7 +1,6 @@
 //! The texture formats dermis ships, shared by the engine (`dermis-core`, which reads them)
 //! and `cargo xtask assets` (which makes them) without either building the other: the roles
-//! an image plays in a material ([`TextureRole`]: its colour space, whether its alpha is
-//! kept), the GPU block formats and their families ([`BlockFormat`], [`Family`]), one image
+//! a material reads an image in ([`TextureRole`]: colour, sRGB, or data, linear), the GPU block formats and their families ([`BlockFormat`], [`Family`]), one image
 //! in a block format in its KTX2 file ([`BlockImage`]), where an image's encodings live
 //! ([`sidecar_path`]), and the mip chain the renderer samples ([`mip_chain`]).
 //!
@@ -17,122 +16,38 @@ mod mips;
 pub use ktx2_file::{KTX2_MAGIC, SOURCE_KEY};
 pub use mips::mip_chain;
 
-/// What a material does with an image; decides its colour space and whether its alpha is
-/// kept. Every image a glTF material references has one.
+/// How a material reads an image: as colour (base colour, emissive, the multi-scatter and
+/// diffuse-transmission colours: sRGB-encoded, as glTF has them) or as data (normal,
+/// metallic-roughness, occlusion, thickness, diffuse-transmission strength: linear). The
+/// loader reads an image once per role it is used in (an occlusion-roughness-metallic image
+/// serves both its slots from one texture), and `cargo xtask assets` encodes it once per role.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum TextureRole {
-    /// Base colour, opaque (alpha forced to 255: all skin).
-    BaseColor,
-    /// Base colour whose alpha is the skin mask (the material declares it).
-    BaseColorMasked,
-    /// Tangent-space normal map (linear).
-    Normal,
-    /// Metallic (b) and roughness (g), linear.
-    MetallicRoughness,
-    /// Ambient occlusion (r), linear.
-    Occlusion,
-    /// Emitted colour (sRGB).
-    Emissive,
-    /// Thickness (`KHR_materials_volume`, g), linear.
-    Thickness,
+    Colour,
+    Data,
 }
 
 impl TextureRole {
-    pub const ALL: [TextureRole; 7] = [
-        TextureRole::BaseColor,
-        TextureRole::BaseColorMasked,
-        TextureRole::Normal,
-        TextureRole::MetallicRoughness,
-        TextureRole::Occlusion,
-        TextureRole::Emissive,
-        TextureRole::Thickness,
-    ];
+    pub const ALL: [TextureRole; 2] = [TextureRole::Colour, TextureRole::Data];
 
-    /// Colour data, stored sRGB-encoded (glTF: base colour and emissive); the rest is data.
-    pub fn srgb(self) -> bool {
-        matches!(
-            self,
-            TextureRole::BaseColor | TextureRole::BaseColorMasked | TextureRole::Emissive
-        )
+    /// The role of an image sampled as sRGB (`true`) or linear data.
+    pub fn of_srgb(srgb: bool) -> Self {
+        match srgb {
+            true => TextureRole::Colour,
+            false => TextureRole::Data,
+        }
     }
 
-    /// Whether the alpha channel carries something (the skin mask); else it is 255.
-    pub fn alpha(self) -> bool {
-        self == TextureRole::BaseColorMasked
+    /// Colour is stored sRGB-encoded; data is linear.
+    pub fn srgb(self) -> bool {
+        self == TextureRole::Colour
     }
 
     /// The role's name in file names (`<image>-<name>.<family>.ktx2`).
     pub fn name(self) -> &'static str {
         match self {
-            TextureRole::BaseColor => "base-color",
-            TextureRole::BaseColorMasked => "base-color-mask",
-            TextureRole::Normal => "normal",
-            TextureRole::MetallicRoughness => "metallic-roughness",
-            TextureRole::Occlusion => "occlusion",
-            TextureRole::Emissive => "emissive",
-            TextureRole::Thickness => "thickness",
-        }
-    }
-
-    /// Every (role, texture index) a glTF material references, in the order above.
-    pub fn of_material(mat: &gltf::Material<'_>) -> Vec<(TextureRole, usize)> {
-        let pbr = mat.pbr_metallic_roughness();
-        let base = if declares_skin_mask(mat, mat.index().unwrap_or(0)) {
-            TextureRole::BaseColorMasked
-        } else {
-            TextureRole::BaseColor
-        };
-        let mut out = Vec::new();
-        let mut push = |role, index: Option<usize>| {
-            if let Some(i) = index {
-                out.push((role, i));
-            }
-        };
-        push(base, pbr.base_color_texture().map(|t| t.texture().index()));
-        push(
-            TextureRole::Normal,
-            mat.normal_texture().map(|t| t.texture().index()),
-        );
-        push(
-            TextureRole::MetallicRoughness,
-            pbr.metallic_roughness_texture()
-                .map(|t| t.texture().index()),
-        );
-        push(
-            TextureRole::Occlusion,
-            mat.occlusion_texture().map(|t| t.texture().index()),
-        );
-        push(
-            TextureRole::Emissive,
-            mat.emissive_texture().map(|t| t.texture().index()),
-        );
-        push(
-            TextureRole::Thickness,
-            mat.volume()
-                .and_then(|v| v.thickness_texture())
-                .map(|t| t.texture().index()),
-        );
-        out
-    }
-}
-
-/// The material `extras` entry declaring the base-colour texture's alpha a skin mask
-/// (`{"dermisSkinMask": "baseColorAlpha"}`; the project's character has it, see `xtask assets`).
-pub const SKIN_MASK_EXTRAS: (&str, &str) = ("dermisSkinMask", "baseColorAlpha");
-
-/// Whether material `mi` declares its base-colour alpha a skin mask.
-pub fn declares_skin_mask(mat: &gltf::Material<'_>, mi: usize) -> bool {
-    let Some(raw) = mat.extras() else {
-        return false;
-    };
-    let (key, value) = SKIN_MASK_EXTRAS;
-    let extras: serde_json::Value = serde_json::from_str(raw.get()).unwrap_or_default();
-    match extras.get(key) {
-        None => false,
-        Some(v) if v.as_str() == Some(value) => true,
-        Some(v) => {
-            log::warn!("material {mi}: extras.{key} = {v} is not \"{value}\"; treated as skin");
-            false
+            TextureRole::Colour => "colour",
+            TextureRole::Data => "data",
         }
     }
 }
@@ -199,9 +114,11 @@ impl BlockFormat {
         !matches!(self, BlockFormat::Bc1 | BlockFormat::Etc2Rgb8)
     }
 
-    /// The format for `family` that holds `role`'s channels (`None`: dermis encodes none).
-    pub fn for_role(family: Family, role: TextureRole) -> Option<Self> {
-        match (family, role.alpha()) {
+    /// The format for `family` that holds an image's channels — with its alpha where any
+    /// texel's alpha is below 255 (a MASK or BLEND base colour, diffuse transmission's
+    /// strength), else RGB, whose alpha reads 255 (`None`: dermis encodes none).
+    pub fn for_image(family: Family, alpha: bool) -> Option<Self> {
+        match (family, alpha) {
             (Family::Bc, false) => Some(BlockFormat::Bc1),
             (Family::Bc, true) => Some(BlockFormat::Bc3),
             (Family::Etc2, false) => Some(BlockFormat::Etc2Rgb8),

@@ -1,7 +1,10 @@
 #!/usr/bin/env python3
 """Generates tests/data/hostile/: corrupt, truncated and hostile .glb/.gltf files, plus
-index.tsv (file <TAB> substring the loader's error must contain). tests/asset_hostile.rs loads
-every listed file and checks the error.
+index.tsv (file <TAB> substring <TAB> outcome): an `error` file must fail with an error
+containing the substring; a `warning` file (a bad material value, a texture missing or not
+decoding) must load, with a warning containing it. core/tests/asset_hostile.rs loads every
+listed file and checks. Also the valid fixtures of tests/data (skinned.glb, embedded.gltf,
+external/, materials/).
 
 Usage: python3 tools/hostile-corpus/make.py   (from the repository root or anywhere)
 Everything is deterministic; re-running rewrites the same bytes.
@@ -138,6 +141,15 @@ def png_header(w, h):
     return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", ihdr) + chunk(b"IDAT", zlib.compress(b"\0" * 64)) + chunk(b"IEND", b"")
 
 
+def png_rgba(w, h, rgba):
+    def chunk(t, d):
+        return struct.pack(">I", len(d)) + t + d + struct.pack(">I", zlib.crc32(t + d) & 0xFFFFFFFF)
+
+    raw = b"".join(b"\0" + bytes(rgba) * w for _ in range(h))
+    ihdr = struct.pack(">IIBBBBB", w, h, 8, 6, 0, 0, 0)
+    return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", ihdr) + chunk(b"IDAT", zlib.compress(raw)) + chunk(b"IEND", b"")
+
+
 def with_image(img):
     def f(g, b):
         off = len(b)
@@ -159,11 +171,11 @@ def put_f32(b, at, *xs):
 
 # ---------------------------------------------------------------- the corpus
 
-CASES = []  # (file name, bytes, expected substring)
+CASES = []  # (file name, bytes, expected substring, "error" | "warning")
 
 
-def case(name, data, expect):
-    CASES.append((name, data, expect))
+def case(name, data, expect, outcome="error"):
+    CASES.append((name, data, expect, outcome))
 
 
 valid = glb(*base())
@@ -277,22 +289,84 @@ case("key_time_negative.glb", mutate(lambda g, b: put_f32(b, OFFSETS["times"], -
 case("key_time_nan.glb", mutate(lambda g, b: put_f32(b, OFFSETS["times"] + 4, math.nan)), "negative or NaN")
 case("cubic_sampler_short.glb", mutate(lambda g, b: g["animations"][0]["samplers"][0].__setitem__("interpolation", "CUBICSPLINE")), "expected 6")
 
-# Images.
-case("image_garbage.glb", mutate(with_image(b"\x89PNG\r\n\x1a\n" + b"\xff" * 64)), "image 0: cannot decode image")
-case("image_not_an_image.glb", mutate(with_image(b"GIF89a? no" * 8)), "image 0: cannot decode image")
-case("image_100000px.glb", mutate(with_image(png_header(100000, 100000))), "image 0: cannot decode image")
+# Images: a texture that does not decode is dropped with a warning; the model loads.
+case("image_garbage.glb", mutate(with_image(b"\x89PNG\r\n\x1a\n" + b"\xff" * 64)),
+     "baseColorTexture (texture 0): image 0: cannot decode image", "warning")
+case("image_not_an_image.glb", mutate(with_image(b"GIF89a? no" * 8)), "image 0: cannot decode image", "warning")
+case("image_100000px.glb", mutate(with_image(png_header(100000, 100000))), "image 0: cannot decode image", "warning")
+
+
+# Materials: every bad value gets one warning naming the material and the value, and a fallback.
+def with_material(mat, extra=None):
+    def f(g, b):
+        g["materials"] = [mat]
+        g["meshes"][0]["primitives"][0]["material"] = 0
+        if extra:
+            extra(g)
+        return g, b
+
+    return mutate(f, "gltf")
+
+
+def volume(**kw):
+    return {"name": "Skin", "extensions": {"KHR_materials_volume": kw}}
+
+
+def scatter(**kw):
+    return {"name": "Skin", "extensions": {"KHR_materials_volume_scatter": kw}}
+
+
+case("material_negative_attenuation_distance.gltf", with_material(volume(attenuationDistance=-1.0)),
+     'material 0 "Skin": KHR_materials_volume.attenuationDistance = -1 is not > 0; inf is used', "warning")
+case("material_attenuation_colour_above_one.gltf", with_material(volume(attenuationColor=[1.5, 0.5, 0.25])),
+     "KHR_materials_volume.attenuationColor = [1.5, 0.5, 0.25] is outside [0, 1]; clamped to [1.0, 0.5, 0.25]",
+     "warning")
+case("material_attenuation_colour_not_numbers.gltf", with_material(volume(attenuationColor="red")),
+     'KHR_materials_volume.attenuationColor = "red" is not three numbers', "warning")
+case("material_thickness_negative.gltf", with_material(volume(thicknessFactor=-0.5)),
+     "KHR_materials_volume.thicknessFactor = -0.5 is not ≥ 0; 0 is used", "warning")
+case("material_ior_below_one.gltf",
+     with_material({"name": "Skin", "extensions": {"KHR_materials_ior": {"ior": 0.5}}}),
+     "KHR_materials_ior.ior = 0.5 is not ≥ 1; 1.5 is used", "warning")
+case("material_anisotropy_one.gltf", with_material(scatter(scatterAnisotropy=1.0)),
+     "KHR_materials_volume_scatter.scatterAnisotropy = 1 is not in (−1, 1); 0 is used", "warning")
+case("material_multiscatter_negative.gltf", with_material(scatter(multiscatterColor=[-0.5, 0.5, 0.5])),
+     "KHR_materials_volume_scatter.multiscatterColor = [-0.5, 0.5, 0.5] is outside [0, 1]", "warning")
+case("material_unknown_property.gltf", with_material(scatter(scatterFoo=1)),
+     "KHR_materials_volume_scatter.scatterFoo is not a known property; ignored", "warning")
+case("material_extension_not_object.gltf",
+     with_material({"name": "Skin", "extensions": {"KHR_materials_volume": [1, 2]}}),
+     "KHR_materials_volume = [1,2] is not an object; extension ignored", "warning")
+case("material_texture_missing.gltf",
+     with_material({"name": "Shirt", "pbrMetallicRoughness": {"baseColorTexture": {"index": 7}}}),
+     'material 0 "Shirt": baseColorTexture references texture 7, but the file has 0; texture ignored', "warning")
+case("material_extension_texture_missing.gltf", with_material(scatter(multiscatterColorTexture={"index": 9})),
+     "KHR_materials_volume_scatter.multiscatterColorTexture references texture 9, but the file has 0", "warning")
+case("material_extension_texture_not_a_reference.gltf",
+     with_material(scatter(multiscatterColorTexture={"index": -1})),
+     "multiscatterColorTexture = {\"index\":-1} is not a texture reference; texture ignored", "warning")
+case("material_texcoord_1.gltf",
+     mutate(lambda g, b: with_image(png_rgba(2, 2, [9, 9, 9, 255]))(g, b) and g["materials"][0].update(
+         occlusionTexture={"index": 0, "texCoord": 1}), "gltf"),
+     "occlusionTexture uses TEXCOORD_1 (only TEXCOORD_0 is loaded); texture ignored", "warning")
+case("material_unknown_alpha_mode.gltf", with_material({"name": "Shirt", "alphaMode": "DITHER"}),
+     'material 0 "Shirt": unknown alphaMode; OPAQUE is used', "warning")
+case("material_roughness_above_one.gltf",
+     with_material({"name": "Shirt", "pbrMetallicRoughness": {"roughnessFactor": 1.5}}),
+     "roughnessFactor = 1.5 is outside [0, 1]; clamped to 1", "warning")
+case("material_base_colour_infinite.gltf",
+     with_material({"name": "Shirt", "pbrMetallicRoughness": {"baseColorFactor": [1e39, 0.5, 0.5, 1]}}),
+     "baseColorFactor = [inf, 0.5, 0.5, 1.0] is not finite; the default is used", "warning")
+case("material_emissive_strength_negative.gltf",
+     with_material({"name": "Lamp", "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": -2}}}),
+     "KHR_materials_emissive_strength.emissiveStrength = -2 is not ≥ 0; 1 is used", "warning")
+case("material_extension_unsupported.gltf",
+     with_material({"name": "Velvet", "extensions": {"KHR_materials_sheen": {"sheenColorFactor": [1, 0, 0]}}}),
+     "material extensions not supported, ignored: KHR_materials_sheen", "warning")
+
 
 
 # ---------------------------------------------------------------- valid fixtures (tests/data)
-
-
-def png_rgba(w, h, rgba):
-    def chunk(t, d):
-        return struct.pack(">I", len(d)) + t + d + struct.pack(">I", zlib.crc32(t + d) & 0xFFFFFFFF)
-
-    raw = b"".join(b"\0" + bytes(rgba) * w for _ in range(h))
-    ihdr = struct.pack(">IIBBBBB", w, h, 8, 6, 0, 0, 0)
-    return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", ihdr) + chunk(b"IDAT", zlib.compress(raw)) + chunk(b"IEND", b"")
 
 
 def rich():
@@ -354,21 +428,103 @@ def fixtures():
         f.write(png_rgba(4, 2, [200, 150, 120, 255]))
 
 
+MATERIAL_FIXTURES = {}  # file name under tests/data/materials -> JSON
+
+
+def data_uri_png(rgba, w=2, h=2):
+    return "data:image/png;base64," + base64.b64encode(png_rgba(w, h, rgba)).decode()
+
+
+def material_fixtures():
+    """Valid files declaring every material field the loader reads (tests/asset_materials.rs)."""
+    g, b = rich()
+    g = copy.deepcopy(g)
+    g["buffers"][0]["uri"] = "data:application/octet-stream;base64," + base64.b64encode(bytes(b)).decode()
+    prim = g["meshes"][0]["primitives"][0]
+    g["images"] = [{"uri": data_uri_png([200, 100, 50, 128])}, {"uri": data_uri_png([10, 128, 250, 255])}]
+    g["textures"] = [{"source": 0}, {"source": 1}]
+
+    # pbr.gltf: three primitives of one mesh, three materials; image 0 is read as colour
+    # (base colour, emissive) and as data (occlusion), image 1 as data only.
+    pbr = copy.deepcopy(g)
+    pbr["meshes"][0]["primitives"] = [dict(prim, material=i) for i in range(3)]
+    pbr["extensionsUsed"] = ["KHR_materials_emissive_strength"]
+    pbr["materials"] = [
+        {"name": "Metal", "doubleSided": True,
+         "pbrMetallicRoughness": {"baseColorFactor": [0.9, 0.8, 0.7, 1.0], "baseColorTexture": {"index": 0},
+                                  "metallicFactor": 0.75, "roughnessFactor": 0.25,
+                                  "metallicRoughnessTexture": {"index": 1}},
+         "normalTexture": {"index": 1, "scale": 0.5},
+         "occlusionTexture": {"index": 0, "strength": 0.6},
+         "emissiveFactor": [0.1, 0.2, 0.3], "emissiveTexture": {"index": 0},
+         "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 4.0}}},
+        {"name": "Leaves", "alphaMode": "MASK", "alphaCutoff": 0.3,
+         "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}},
+        {"name": "Glass", "alphaMode": "BLEND"},
+    ]
+    MATERIAL_FIXTURES["pbr.gltf"] = pbr
+
+    # skin.gltf: the four extensions (the draft's `multiscatterColor`), a material with the
+    # draft's earlier `scatterAlbedo`, one with volume and diffuse transmission only, cloth.
+    skin = copy.deepcopy(g)
+    skin["meshes"][0]["primitives"] = [dict(prim, material=i) for i in range(4)]
+    skin["extensionsUsed"] = ["KHR_materials_volume", "KHR_materials_volume_scatter",
+                              "KHR_materials_diffuse_transmission", "KHR_materials_ior"]
+    skin["materials"] = [
+        {"name": "Face", "pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.6, 0.5, 1.0], "metallicFactor": 0},
+         "extensions": {
+             "KHR_materials_volume": {"thicknessFactor": 0.02, "thicknessTexture": {"index": 1},
+                                      "attenuationDistance": 0.002, "attenuationColor": [0.5, 0.25, 0.125]},
+             "KHR_materials_volume_scatter": {"multiscatterColor": [0.8, 0.5, 0.3],
+                                              "multiscatterColorTexture": {"index": 0},
+                                              "scatterAnisotropy": 0.4},
+             "KHR_materials_diffuse_transmission": {"diffuseTransmissionFactor": 0.7,
+                                                    "diffuseTransmissionTexture": {"index": 1},
+                                                    "diffuseTransmissionColorFactor": [1.0, 0.4, 0.3],
+                                                    "diffuseTransmissionColorTexture": {"index": 0}},
+             "KHR_materials_ior": {"ior": 1.4}}},
+        {"name": "Wax", "extensions": {
+            "KHR_materials_volume": {"thicknessFactor": 0.01, "attenuationDistance": 0.001,
+                                     "attenuationColor": [0.5, 0.5, 0.5]},
+            "KHR_materials_volume_scatter": {"scatterAlbedo": [0.9, 0.9, 0.9]}}},
+        {"name": "Leaf", "extensions": {
+            "KHR_materials_volume": {"thicknessFactor": 0.001},
+            "KHR_materials_diffuse_transmission": {"diffuseTransmissionFactor": 0.5}}},
+        {"name": "Skin shirt", "pbrMetallicRoughness": {"baseColorFactor": [0.1, 0.3, 0.6, 1.0]}},
+    ]
+    MATERIAL_FIXTURES["skin.gltf"] = skin
+
+    # named.gltf: no extension declares skin; the name rule decides.
+    named = copy.deepcopy(g)
+    names = ["Body", "M_Skin_01", "HairBase", "Eyes", "BodySuit", "Skinny"]
+    named["meshes"][0]["primitives"] = [dict(prim, material=i) for i in range(len(names))]
+    named["materials"] = [{"name": n, "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}} for n in names]
+    MATERIAL_FIXTURES["named.gltf"] = named
+
+    out = os.path.normpath(os.path.join(OUT, "..", "materials"))
+    os.makedirs(out, exist_ok=True)
+    for name, doc in MATERIAL_FIXTURES.items():
+        with open(os.path.join(out, name), "w") as f:
+            f.write(json.dumps(doc, indent=1, ensure_ascii=False) + "\n")
+
+
 def main():
     fixtures()
+    material_fixtures()
     os.makedirs(OUT, exist_ok=True)
     for f in os.listdir(OUT):
         if f.endswith((".glb", ".gltf")) or f == "index.tsv":
             os.remove(os.path.join(OUT, f))
     names = set()
     with open(os.path.join(OUT, "index.tsv"), "w") as index:
-        index.write("# file\texpected error substring (generated by tools/hostile-corpus/make.py)\n")
-        for name, data, expect in CASES:
+        index.write("# file\texpected substring\toutcome: error | warning | none "
+                    "(generated by tools/hostile-corpus/make.py)\n")
+        for name, data, expect, outcome in CASES:
             assert name not in names, name
             names.add(name)
             with open(os.path.join(OUT, name), "wb") as f:
                 f.write(data)
-            index.write("%s\t%s\n" % (name, expect))
+            index.write("%s\t%s\t%s\n" % (name, expect, outcome))
     print("wrote %d files to %s" % (len(CASES), OUT))
 
 

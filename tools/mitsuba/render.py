@@ -1,5 +1,7 @@
 #!/usr/bin/env python3
-"""Path-traced references of the face scenes with Mitsuba 3 (scalar_rgb).
+"""The face scenes path-traced by Mitsuba 3 (scalar_rgb): the cross-check of the project's own
+face truth (`dermis reference --scene head`, `tools/reference/face/`; compared by
+`tools/mitsuba/crosscheck.py`).
 
 Reads the scene dermis exports (`dermis render --scene head --export DIR`: DIR/scene.json and
 DIR/head.ply, the head in metres) and renders, per light, the head as a homogeneous medium
@@ -9,8 +11,17 @@ boundary over a black interior) so the subsurface part can be scored on its own,
 head's coverage (alpha). Writes PFMs and DIR/cache.json (Mitsuba version, integrator, sample
 counts, seeds, times, and the sha256 of scene.json and head.ply the images were made from).
 
-    python3 -m venv tools/mitsuba/.venv && tools/mitsuba/.venv/bin/pip install 'mitsuba==3.9.*'
-    nice -n 15 tools/mitsuba/.venv/bin/python tools/mitsuba/render.py tools/mitsuba/face
+    python3 -m venv tools/mitsuba/.venv && tools/mitsuba/.venv/bin/pip install 'mitsuba==3.9.*' numpy
+    dermis render --scene head --export DIR
+    nice -n 15 tools/mitsuba/.venv/bin/python tools/mitsuba/render.py DIR --alpha 0.1 --size 32 \
+        --spp 256 --seeds 1 2 3 4 5 6
+
+Options: --alpha A (the boundary's GGX roughness, default 0.35: skin's specular lobe; the
+cross-check uses 0.1, where the boundary loses ≤ 3 % of the light crossing it, see
+docs/results/mitsuba-roughness.md), --spp N per channel and seed (default 256, or $SPP),
+--face-normals (the triangles' normals, as the dermis truth walks them; default: Mitsuba's
+interpolated shading normals), --seeds S... (default 1 2), --lights a,b (default all; or $LIGHTS), --size N (an N×N image
+over the same field of view: the cross-check's integrals need samples, not pixels).
 
 Facts this relies on (measured here): the llvm_* variants abort with LLVM 15, so scalar_rgb;
 the volume path tracer cannot connect a point light through a smooth dielectric, so the
@@ -19,6 +30,7 @@ multiple importance sampling, which keeps skin's red (albedo 0.96) from the heav
 weights that single-channel distance sampling gives it.
 """
 
+import argparse
 import hashlib
 import json
 import os
@@ -31,13 +43,16 @@ import mitsuba as mi
 mi.set_variant("scalar_rgb")
 T = mi.ScalarTransform4f
 
-# GGX roughness of the boundary: skin's specular lobe (Weyrich et al. 2006 fit Torrance-
-# Sparrow roughness 0.3–0.45 on faces); the engine's models have no boundary roughness of
-# their own, so this only shapes where the boundary lets light in and out.
+# GGX roughness of the boundary (--alpha): by default skin's specular lobe (Weyrich et al.
+# 2006 fit Torrance-Sparrow roughness 0.3–0.45 on faces); the engine's models have no boundary
+# roughness of their own, so this only shapes where the boundary lets light in and out.
 ALPHA = 0.35
 SPP = int(os.environ.get("SPP", "256"))
 SPP_SPECULAR = int(os.environ.get("SPP_SPECULAR", "64"))
 SEEDS = (1, 2)
+# --face-normals: the triangles' own normals for the boundary (the dermis truth's), else the
+# interpolated vertex normals (Mitsuba's shading normals).
+FACE_NORMALS = False
 
 
 def sha256(path):
@@ -101,7 +116,7 @@ def scene_dict(scene, light, interior):
         "head": {
             "type": "ply",
             "filename": scene["mesh"],
-            "face_normals": False,
+            "face_normals": FACE_NORMALS,
             "bsdf": {
                 "type": "roughdielectric",
                 "distribution": "ggx",
@@ -153,23 +168,40 @@ def restamp(out):
 
 
 def main():
+    global ALPHA, SPP, SEEDS, FACE_NORMALS
     if len(sys.argv) == 3 and sys.argv[1] == "--restamp":
         return restamp(sys.argv[2])
-    if len(sys.argv) != 2:
-        sys.exit("usage: render.py DIR   (DIR/scene.json, DIR/head.ply from dermis)")
-    out = sys.argv[1]
+    parser = argparse.ArgumentParser(description="DIR/scene.json, DIR/head.ply from dermis")
+    parser.add_argument("dir")
+    parser.add_argument("--alpha", type=float, default=ALPHA)
+    parser.add_argument("--spp", type=int, default=SPP)
+    parser.add_argument("--seeds", type=int, nargs="+", default=list(SEEDS))
+    parser.add_argument("--lights", default=os.environ.get("LIGHTS"))
+    parser.add_argument("--size", type=int, help="image side instead of scene.json's (the same "
+                        "field of view: an integrated cross-check needs few pixels, many samples)")
+    parser.add_argument("--face-normals", action="store_true")
+    args = parser.parse_args()
+    FACE_NORMALS = args.face_normals
+    if not (0.0 < args.alpha <= 1.0) or args.spp < 1 or not args.seeds:
+        sys.exit("render.py: --alpha must be in (0, 1], --spp at least 1, a seed given")
+    ALPHA, SPP, SEEDS = args.alpha, args.spp, tuple(args.seeds)
+    out = args.dir
     scene_path = os.path.join(out, "scene.json")
     with open(scene_path) as f:
         scene = json.load(f)
+    if args.size:
+        scene["camera"]["width"] = scene["camera"]["height"] = args.size
     cwd = os.getcwd()
     os.chdir(out)
-    only = os.environ.get("LIGHTS")
+    only = args.lights
     record = {
         "mitsuba": mi.__version__,
         "variant": mi.variant(),
         "integrator": "volpath (max_depth -1, rr_depth 64), one grey medium per channel",
-        "boundary": "roughdielectric ggx alpha %.2f" % ALPHA,
+        "boundary": "roughdielectric ggx alpha %.2f%s" % (
+            ALPHA, ", face normals" if FACE_NORMALS else ", vertex normals"),
         "spp": SPP,
+        "size": scene["camera"]["width"],
         "spp_specular": SPP_SPECULAR,
         "seeds": list(SEEDS),
         "scene_sha256": sha256("scene.json"),

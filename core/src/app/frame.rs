@@ -3,11 +3,19 @@
 //! the governor fed what each frame cost. Every shell runs the game through
 //! [`GameFrame::run`]: the desktop window, the Android app, `play`, the soak, `bench effects`
 //! and the steady-state test.
+//!
+//! One frame, top to bottom: the session updates (input, rules, animation, camera, UI, the
+//! governor's tier) → the session's packet (plain data, [`Session::extract`]) → the renderer
+//! prepares it ([`GameGpu::last_frame`]) → the renderer encodes the prepared frame → submit.
+//! Nothing goes back from the GPU side into the session.
 
 use super::{FrameInfo, GameGpu, Session, Viewport};
 use crate::asset::Model;
+use crate::game::Screen;
 use crate::lifecycle::FrameStatus;
-use crate::render::{FrameDriver, FrameOutput, FrameTimes, FrameWork, Gpu, Output, RenderStats};
+use crate::render::{
+    FrameDriver, FrameOutput, FrameTimes, FrameWork, Gpu, Output, PassCtx, RenderStats,
+};
 use crate::soak::FrameSample;
 use crate::ui::Insets;
 
@@ -82,8 +90,18 @@ impl FrameWork for GameFrame<'_> {
         self.info = self.session.update(dt as f32, self.character, viewport);
     }
 
-    fn upload(&mut self, queue: &wgpu::Queue) {
-        self.gpu.upload(queue, self.session, self.character);
+    fn resize(&mut self, gpu: &Gpu, width: u32, height: u32) {
+        self.gpu.renderer.resize(gpu, (width, height));
+    }
+
+    /// The session's packet, prepared by the renderer (play: every pipeline ready first).
+    fn upload(&mut self, gpu: &Gpu) {
+        let settled = self.session.game.screen() == Screen::Play;
+        let head = self.gpu.head.clone();
+        let packet = self
+            .session
+            .extract(self.character, head.as_deref(), settled);
+        self.gpu.prepare(gpu, &packet);
     }
 
     fn encode(
@@ -91,9 +109,12 @@ impl FrameWork for GameFrame<'_> {
         encoder: &mut wgpu::CommandEncoder,
         output: &FrameOutput<'_>,
     ) -> RenderStats {
-        self.stats = self
-            .gpu
-            .encode(encoder, output.targets, output.view, self.session);
+        self.stats = self.gpu.encode(&mut PassCtx {
+            encoder,
+            targets: output.targets,
+            output: output.view,
+            timer: None,
+        });
         if let Some(hook) = &mut self.after_encode {
             hook(encoder, self.session, output);
         }

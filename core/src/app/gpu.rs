@@ -1,30 +1,29 @@
-//! The game's GPU side: the renderer with the scene uploaded plus the UI renderer, created at
-//! load — the first model's pipeline with them, the other reachable models' on a background
-//! thread once the first frame is out, all in place before play starts, so nothing is
-//! created in play. Where the scanned head was loaded ([`SceneAssets::head`]) it is uploaded
-//! here too, after the first frame, beside the runner, for the showroom: showing it swaps what
-//! is drawn and creates nothing.
+//! The game's GPU side: the renderer with the scene uploaded, its blob shadows and its UI,
+//! created at load — the first model's pipeline with them, the other reachable models' on a
+//! background thread once the first frame is out, all in place before play starts, so nothing
+//! is created in play. Where the scanned head was loaded ([`SceneAssets::head`]) it is
+//! uploaded here too, after the first frame, beside the runner, for the showroom: showing it
+//! swaps what is drawn and creates nothing. It sees frame packets, never the session
+//! ([`GameFrame`](super::GameFrame) hands them over).
 
-use super::Session;
+use std::sync::Arc;
+
 use crate::anim::Pose;
 use crate::asset::Model;
-use crate::game::Screen;
-use crate::render::{Gpu, PipelineSet, RenderStats, Renderer, Targets, UiRenderer, MSAA_SAMPLES};
-use crate::scene::{HeadLoad, SceneAssets};
-use crate::shading::material::SKIN1;
+use crate::render::{Gpu, PassCtx, PipelineSet, PreparedFrame, RenderStats, Renderer};
+use crate::scene::{FramePacket, HeadLoad, Roles, SceneAssets};
 use crate::shading::ShadingModel;
 
 pub struct GameGpu {
     pub renderer: Renderer,
-    pub ui: UiRenderer,
-    /// The showroom's scanned head, once uploaded.
-    pub head: Option<ShowroomHead>,
+    /// The showroom's scanned head, once uploaded (shared with the packets that pose it).
+    pub head: Option<Arc<ShowroomHead>>,
     /// The head as it loads, until it is uploaded.
     head_load: HeadLoad,
-    device: wgpu::Device,
-    queue: wgpu::Queue,
-    /// Frames uploaded.
+    /// Frames prepared.
     frames: u64,
+    /// The frame prepared last (what the next encode records).
+    frame: Option<PreparedFrame>,
 }
 
 /// The scanned head as the showroom draws it: its renderer slot, the model and its (rest)
@@ -50,21 +49,17 @@ impl GameGpu {
             gpu,
             format,
             (&set, first),
-            (&assets.character, &assets.props),
-            &SKIN1,
+            (&assets.character, &assets.roles, &assets.props),
         )?;
         // Contact shadows under the runner and the props, so nothing floats.
         renderer.enable_blob_shadows(gpu);
-        let (rgba, w, h) = crate::ui::atlas_rgba();
-        let ui = UiRenderer::new(&gpu.device, &gpu.queue, format, MSAA_SAMPLES, &rgba, w, h);
+        renderer.enable_ui(gpu);
         Ok(Self {
             renderer,
-            ui,
             head: None,
             head_load: assets.head.clone(),
-            device: gpu.device.clone(),
-            queue: gpu.queue.clone(),
             frames: 0,
+            frame: None,
         })
     }
 
@@ -74,22 +69,32 @@ impl GameGpu {
         self.head.is_some() || self.head_load.expected()
     }
 
-    /// Uploads the showroom's head (after the first frame, before play), waiting for its
-    /// decoder if it is not done (it started with the assets, so it rarely is): a subject
-    /// beside the runner; a head that cannot be drawn is left out (logged).
-    fn upload_head(&mut self) {
+    /// Prepares the frame `packet` describes (what [`Self::encode`] records next). What
+    /// waits until the first frame is out (it would delay it) but not into play (a `settled`
+    /// packet) is done first: the showroom's head, then the pipeline builder — the head
+    /// first, so its normal-mapped pipelines join the builder's list.
+    pub fn prepare(&mut self, gpu: &Gpu, packet: &FramePacket) {
+        if self.frames > 0 || packet.settled {
+            self.upload_head(gpu);
+            self.renderer.start_pipeline_builder();
+        }
+        self.frames += 1;
+        self.frame = Some(self.renderer.prepare(gpu, packet));
+    }
+
+    /// Uploads the showroom's head, waiting for its decoder if it is not done (it started
+    /// with the assets, so it rarely is): a subject beside the runner; a head that cannot be
+    /// drawn is left out (logged).
+    fn upload_head(&mut self, gpu: &Gpu) {
         let load = std::mem::take(&mut self.head_load);
         let Some(model) = load.wait().cloned() else {
             return;
         };
-        match self
-            .renderer
-            .add_subject((&self.device, &self.queue), &model)
-        {
+        match self.renderer.add_subject(gpu, &model, &Roles::of(&model)) {
             Ok(slot) => {
                 let mut pose = Pose::new(&model);
                 pose.update_world(&model);
-                self.head = Some(ShowroomHead { slot, model, pose });
+                self.head = Some(Arc::new(ShowroomHead { slot, model, pose }));
             }
             Err(e) => log::warn!("the showroom's head is left out: {e}"),
         }
@@ -97,62 +102,28 @@ impl GameGpu {
 
     /// Waits for the showroom's head and every pipeline still being built in the
     /// background (before counting GPU objects; play waits for them by itself).
-    pub fn finish_loading(&mut self) {
-        self.upload_head();
+    pub fn finish_loading(&mut self, gpu: &Gpu) {
+        self.upload_head(gpu);
         self.renderer.start_pipeline_builder();
         self.renderer.receive_pipelines(None, true);
     }
 
-    /// This frame's uploads (palettes, uniforms, props, UI when it changed), after installing
-    /// the pipelines built so far: waiting for the one this frame draws if it is not ready,
-    /// and for all of them once play starts.
-    pub fn upload(&mut self, queue: &wgpu::Queue, session: &mut Session, character: &Model) {
-        // The showroom's head and the pipeline builder wait until the first frame is out
-        // (they would delay it), but not into play; the head first, so its normal-mapped
-        // pipelines join the builder's list.
-        let play = session.game.screen() == Screen::Play;
-        if self.frames > 0 || play {
-            self.upload_head();
-            self.renderer.start_pipeline_builder();
-        }
-        self.frames += 1;
-        let packet = session.extract(character, self.head.as_ref());
-        let r = &mut self.renderer;
-        let mut uploads = 0;
-        r.select_subject(packet.slot);
-        if let Some((model, pose, world)) = packet.subject {
-            r.update_character(queue, model, pose, world);
-            uploads += 1;
-        }
-        uploads += r.set_props(queue, packet.props);
-        uploads += r.prepare(queue, &packet.view);
-        self.ui.resize(queue, packet.viewport.0, packet.viewport.1);
-        if let Some(vertices) = packet.ui {
-            self.ui.upload(queue, vertices);
-            uploads += 1;
-        }
-        let ui = packet.ui.is_some();
-        session.uploaded(uploads, ui);
-        // After the upload: the subject it shows decides which variant is waited for.
-        self.renderer
-            .receive_pipelines(session.draw_set().shading, play);
+    /// Whether what loads after the first frame is in place: the showroom's head uploaded
+    /// (or none to upload) and every pipeline built (the window saves its pipeline cache then).
+    pub fn loaded(&self) -> bool {
+        self.frames > 0 && !self.head_load.expected() && !self.renderer.pipelines_loading()
     }
 
-    /// Records the frame's single pass into `encoder`.
-    pub fn encode(
-        &self,
-        encoder: &mut wgpu::CommandEncoder,
-        targets: &Targets,
-        output: &wgpu::TextureView,
-        session: &Session,
-    ) -> RenderStats {
-        self.renderer.encode(
-            encoder,
-            targets,
-            output,
-            session.draw_set(),
-            Some(&self.ui),
-            None,
-        )
+    /// The frame prepared last.
+    pub fn last_frame(&self) -> Option<&PreparedFrame> {
+        self.frame.as_ref()
+    }
+
+    /// Records the frame prepared last.
+    pub fn encode(&self, ctx: &mut PassCtx) -> RenderStats {
+        match &self.frame {
+            Some(frame) => self.renderer.encode(frame, ctx),
+            None => RenderStats::default(),
+        }
     }
 }

@@ -117,7 +117,7 @@ mod tests {
         assert!(assets.head.expected());
         let head = assets.head.wait().expect("the head loads");
         assert!(head.meshes.iter().any(|m| !m.primitives.is_empty()));
-        assert!(assets.props.len() == crate::render::PropKind::ALL.len());
+        assert!(assets.props.len() == crate::scene::PropKind::ALL.len());
     }
 
     #[test]

@@ -1,8 +1,9 @@
 //! The app around the runner game: the [`Session`] (input mapping, the menus and screens, the
 //! showroom, the settings file, the governor's scheduling, the follow camera), and its GPU
 //! side ([`GameGpu`], [`GameFrame`]): what the shells (desktop window, Android, `play`, the
-//! soak) run. Each frame the session hands the GPU side a plain [`FramePacket`] (the extract
-//! step); the session itself touches no GPU object. The game's rules (`crate::game`) know nothing of it or of the renderer.
+//! soak) run. Each frame the session hands the GPU side a plain
+//! [`FramePacket`](crate::scene::FramePacket) (the extract step); the session itself touches
+//! no GPU object, and nothing from the GPU side calls back into it. The game's rules (`crate::game`) know nothing of it or of the renderer.
 
 mod frame;
 mod gpu;
@@ -18,6 +19,6 @@ pub use gpu::{GameGpu, ShowroomHead};
 pub use load::{GameLoad, GameSetup, Loaded};
 pub use menu::MenuLayout;
 pub use screens::{GameUi, UiOutcome};
-pub use session::{FrameInfo, FramePacket, Key, Session, Viewport};
+pub use session::{FrameInfo, Key, Session, Viewport};
 pub use settings::Settings;
 pub use showroom::{Showroom, Subject};

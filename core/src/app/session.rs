@@ -7,7 +7,7 @@
 
 use std::path::PathBuf;
 
-use glam::{Mat4, Vec3};
+use glam::Vec3;
 
 use super::showroom::{head_matrix, is_showroom, Subject};
 use super::{GameUi, Settings, Showroom, ShowroomHead};
@@ -16,10 +16,11 @@ use crate::asset::Model;
 use crate::camera::{CameraPose, FollowCamera, Frustum};
 use crate::game::{Bot, Game, Input, Screen, Swipe};
 use crate::governor::{Change, Governor, GovernorConfig, Needs, Tiers};
-use crate::render::rig::{CHARACTER, EXPOSURE};
-use crate::render::{DrawSet, FrameView, Light, PropInstance};
+use crate::scene::{
+    DrawSet, FramePacket, FrameView, Light, PropInstance, SubjectPose, CHARACTER, EXPOSURE,
+};
 use crate::shading::ShadingModel;
-use crate::ui::{Insets, Ui, UiVertex};
+use crate::ui::{Insets, Ui};
 
 /// A discrete key the game understands.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -97,30 +98,12 @@ pub struct Session {
     /// Whether the character's bounding sphere is inside the view this frame; when it is not,
     /// it is neither animated nor uploaded.
     pub character_visible: bool,
-    /// Buffer uploads (`write_buffer` calls) made for the last [`Session::extract`].
-    pub uploads: u32,
     /// Chooses the character's shading tier each frame (tiers follow the player's choice).
     pub governor: Governor,
     /// What this frame needs (computed by [`Session::update`]).
     pub needs: Needs,
     /// 0: the wide follow camera, 1: the close-up; in between while switching.
     close: f32,
-}
-
-/// What one frame draws, as plain data: the session's side of the extract step between the
-/// app and the renderer ([`GameGpu::upload`](super::GameGpu::upload) writes it).
-pub struct FramePacket<'a> {
-    /// The renderer's subject slot drawn (0: the character).
-    pub slot: usize,
-    /// Its model, pose and placement; `None`: nothing to pose (the runner out of view).
-    pub subject: Option<(&'a Model, &'a Pose, Mat4)>,
-    pub view: FrameView,
-    pub props: &'a [PropInstance],
-    /// The target's size in pixels.
-    pub viewport: (u32, u32),
-    /// The UI's vertices, when they changed since the last upload.
-    pub ui: Option<&'a [UiVertex]>,
-    pub draw: DrawSet,
 }
 
 impl Session {
@@ -164,7 +147,6 @@ impl Session {
                 insets: Insets::default(),
             },
             character_visible: true,
-            uploads: 0,
             governor: Governor::new(
                 Tiers::for_choice(settings.shading_model()),
                 GovernorConfig::for_fps(60.0),
@@ -413,47 +395,53 @@ impl Session {
         }
     }
 
-    /// This frame's packet for the GPU side (the extract step): plain data, no GPU object.
-    /// `head`: the showroom's scanned head, when the GPU side holds it.
+    /// This frame's packet for the GPU side (the extract step: plain data, no GPU object).
+    /// `head`: the showroom's scanned head, when the GPU side holds it; `settled`: every
+    /// pipeline must be ready (play). The UI's vertices are in it when they changed, and are
+    /// then counted as handed over.
     pub fn extract<'a>(
-        &'a self,
+        &'a mut self,
         character: &'a Model,
         head: Option<&'a ShowroomHead>,
+        settled: bool,
     ) -> FramePacket<'a> {
+        let fresh_ui = self.ui.needs_upload();
+        self.ui.mark_uploaded();
         let aspect = self.viewport.width as f32 / self.viewport.height.max(1) as f32;
         let (slot, subject) = match head.filter(|_| self.showroom.subject() == Subject::Head) {
             Some(head) => {
                 let (feet, _) = self.game.player_transform();
-                let pose = (&head.model, &head.pose, head_matrix(feet));
+                let pose = SubjectPose {
+                    model: &head.model,
+                    pose: &head.pose,
+                    world: head_matrix(feet),
+                };
                 (head.slot, Some(pose))
             }
             None => {
-                let pose = (character, &self.pose, self.game.player_matrix());
+                let pose = SubjectPose {
+                    model: character,
+                    pose: &self.pose,
+                    world: self.game.player_matrix(),
+                };
                 (0, self.character_visible.then_some(pose))
             }
         };
+        let view = self.view();
         FramePacket {
-            slot,
-            subject,
+            viewport: (self.viewport.width, self.viewport.height),
             view: FrameView {
-                view_proj: self.view().view_proj(aspect),
-                camera_pos: self.view().eye,
+                view_proj: view.view_proj(aspect),
+                camera_pos: view.eye,
                 light: self.light,
                 exposure: EXPOSURE,
             },
-            props: &self.props,
-            viewport: (self.viewport.width, self.viewport.height),
-            ui: self.ui.needs_upload().then(|| self.ui.vertices()),
             draw: self.draw_set(),
-        }
-    }
-
-    /// Records what the GPU side uploaded of the last [`Session::extract`]: `uploads` buffer
-    /// writes, the UI's vertices among them if `ui`.
-    pub fn uploaded(&mut self, uploads: u32, ui: bool) {
-        self.uploads = uploads;
-        if ui {
-            self.ui.mark_uploaded();
+            slot,
+            subject,
+            props: Some(&self.props),
+            ui: fresh_ui.then(|| self.ui.vertices()),
+            settled,
         }
     }
 
@@ -464,6 +452,7 @@ impl Session {
             shading: Some(self.drawn_model()),
             character: true,
             props: self.showroom.subject() != Subject::Head,
+            ui: true,
         }
     }
 }

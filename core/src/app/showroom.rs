@@ -22,7 +22,7 @@ use super::Viewport;
 use crate::camera::{CameraPose, FollowCamera};
 use crate::face::head::HEAD_CENTRE;
 use crate::game::{Game, Screen};
-use crate::render::rig::{key_light, CHARACTER, KEY_LIGHT_OFFSET};
+use crate::scene::{key_light, CHARACTER, KEY_LIGHT_OFFSET};
 use crate::ui::{Rect, Ui};
 
 /// Camera ↔ showroom blend duration (s).

@@ -12,7 +12,8 @@ pub const LIMITS: (u32, u64) = (MAX_IMAGE_SIDE, MAX_IMAGE_ALLOC);
 
 /// The texture for `role` from an image's `source` bytes (PNG, JPEG or KTX2; empty: the
 /// source is not there, as in the APK, which carries the encodings only): its block
-/// encodings where there are usable ones — the source itself if it is KTX2, and every file
+/// encodings where there are usable ones — the source itself if it is KTX2 in `role`'s
+/// colour space, and every file
 /// `sidecar(family)` names that `read` finds, of the source's size and (for a PNG/JPEG source)
 /// made from these very bytes — else the source decoded. An encoding that cannot be used is
 /// one logged line and is left out (`what` names the image).
@@ -28,9 +29,13 @@ pub fn encoded_texture(
         (None, None)
     } else if source.starts_with(&KTX2_MAGIC) {
         let img = BlockImage::read(source, LIMITS).map_err(|e| format!("{what}: {e}"))?;
-        img.check_role(role).map_err(|e| format!("{what}: {e}"))?;
         let size = (img.width, img.height);
-        encodings.push(std::sync::Arc::new(img));
+        // An image used in two roles points at one role's encoding (the APK's glbs); the
+        // other role's is beside it.
+        match img.check_role(role) {
+            Ok(()) => encodings.push(std::sync::Arc::new(img)),
+            Err(e) => log::debug!("{what}: {e}; its encodings are looked for"),
+        }
         (Some(size), None)
     } else {
         // A source that cannot be read is decode_image's to report.
@@ -68,7 +73,7 @@ pub fn encoded_texture(
         }
     }
     let Some(first) = encodings.first() else {
-        if source.is_empty() {
+        if source.is_empty() || source.starts_with(&KTX2_MAGIC) {
             return Err(format!("{what}: no image and no usable encoding of it"));
         }
         return super::images::decode_image(source, role.srgb(), what);
@@ -78,6 +83,7 @@ pub fn encoded_texture(
         height: first.height,
         texels: super::Texels::Blocks(encodings),
         srgb: role.srgb(),
+        image: None,
     })
 }
 

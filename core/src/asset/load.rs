@@ -3,19 +3,16 @@
 //! checked against [`limits`](super::limits) before anything is allocated.
 
 use std::borrow::Cow;
-use std::collections::HashMap;
 use std::path::Path;
 
-use super::accessor::{view_bytes, Buffers};
+use super::accessor::Buffers;
 use super::animation::load_animation;
-use super::compressed::{declares_skin_mask, encoded_texture, sidecar_path};
-use super::limits::{
-    MAX_EXTERNAL_FILE_BYTES, MAX_FILE_BYTES, MAX_TOTAL_BUFFER_BYTES, MAX_TOTAL_IMAGE_BYTES,
-};
+use super::limits::{MAX_EXTERNAL_FILE_BYTES, MAX_FILE_BYTES, MAX_TOTAL_BUFFER_BYTES};
+use super::materials::{load_materials, sanitize, Warnings};
 use super::nodes::{load_nodes, load_skin, scene_roots};
 use super::uri::{resolve_uri, UriRef};
 use super::vertices::{load_mesh, Totals};
-use super::{glb, AssetError, Family, Material, Model, Texels, TextureImage, TextureRole};
+use super::{glb, AssetError, Model};
 
 /// Loads a .glb or .gltf file; external buffers/images are read from the file's folder.
 pub fn load_gltf(path: &Path) -> Result<Model, AssetError> {
@@ -133,8 +130,12 @@ fn load(
         (bytes, None)
     };
     let raw = gltf::Gltf::from_slice_without_validation(json).map_err(map_gltf_error)?;
-    let raw = raw.document.into_json();
+    let mut raw = raw.document.into_json();
     precheck(&raw)?;
+    let mut warnings = Warnings::new(name);
+    sanitize(&mut raw, &mut warnings);
+    // Required extensions the engine reads pass; gltf-json's validation refuses the others.
+    raw.extensions_required.retain(|e| !extension_supported(e));
     // Known gltf-json validation panics are prechecked above; the guard is defence in depth
     // (it cannot help where panics abort, hence the precheck).
     let validated = std::panic::catch_unwind(move || gltf::Document::from_json(raw))
@@ -142,10 +143,8 @@ fn load(
     let doc = validated.map_err(map_gltf_error)?;
     let root = doc.as_json();
 
-    for ext in doc.extensions_required() {
-        if !extension_supported(ext) {
-            return Err(format!("requires unsupported extension {ext}"));
-        }
+    if let Some(ext) = doc.extensions_required().next() {
+        return Err(format!("requires unsupported extension {ext}"));
     }
 
     let buffers = load_buffers(&doc, bin, resolve)?;
@@ -195,7 +194,7 @@ fn load(
         }
     }
 
-    let (materials, textures) = load_materials(&doc, &buffers, name, resolve)?;
+    let (materials, textures) = load_materials(&doc, &buffers, (name, resolve), &mut warnings)?;
 
     let mut animations = Vec::with_capacity(root.animations.len());
     for ai in 0..root.animations.len() {
@@ -211,6 +210,7 @@ fn load(
         materials,
         textures,
         animations,
+        warnings: warnings.list,
     })
 }
 
@@ -267,125 +267,4 @@ fn load_buffers<'a>(
         data.push(bytes);
     }
     Ok(Buffers { data })
-}
-
-/// Makes every texel opaque: the engine draws opaque, and the character shader reads the
-/// base colour's alpha as the skin mask, so a texture without a declared mask is all skin.
-fn opaque(mut tex: TextureImage) -> TextureImage {
-    if let Texels::Rgba8(px) = &mut tex.texels {
-        for px in px.chunks_exact_mut(4) {
-            px[3] = 255;
-        }
-    }
-    tex
-}
-
-fn load_materials(
-    doc: &gltf::Document,
-    buffers: &Buffers<'_>,
-    name: &str,
-    resolve: &dyn Fn(&str) -> Result<Vec<u8>, String>,
-) -> Result<(Vec<Material>, Vec<TextureImage>), String> {
-    let root = doc.as_json();
-    let mut materials = Vec::with_capacity(root.materials.len());
-    let mut textures: Vec<TextureImage> = Vec::new();
-    // (image, role) -> texture slot.
-    let mut by_image: HashMap<(usize, TextureRole), usize> = HashMap::new();
-    let mut image_bytes: u64 = 0;
-    let file = name.rsplit(['/', '\\']).next().unwrap_or(name);
-    for mat in doc.materials() {
-        let mi = mat.index().unwrap_or(0);
-        let pbr = mat.pbr_metallic_roughness();
-        let factor = pbr.base_color_factor();
-        if factor.iter().any(|f| !f.is_finite()) {
-            return Err(format!("material {mi}: NaN/Inf baseColorFactor"));
-        }
-        let mut base_color_texture = None;
-        if let Some(info) = pbr.base_color_texture() {
-            if info.tex_coord() != 0 {
-                log::warn!(
-                    "material {mi}: base colour uses TEXCOORD_{}; TEXCOORD_0 is used",
-                    info.tex_coord()
-                );
-            }
-            let ti = info.texture().index();
-            let ii = root
-                .textures
-                .get(ti)
-                .map(|t| t.source.value())
-                .filter(|&ii| ii < root.images.len())
-                .ok_or_else(|| format!("material {mi}: texture {ti} has no valid image source"))?;
-            let role = match declares_skin_mask(&mat, mi) {
-                true => TextureRole::BaseColorMasked,
-                false => TextureRole::BaseColor,
-            };
-            let slot = match by_image.get(&(ii, role)) {
-                Some(&s) => s,
-                None => {
-                    let tex = load_image(doc, buffers, resolve, ii, role, file)?;
-                    let tex = if role.alpha() { tex } else { opaque(tex) };
-                    image_bytes = image_bytes.saturating_add(tex.bytes());
-                    if image_bytes > MAX_TOTAL_IMAGE_BYTES {
-                        return Err(format!(
-                            "decoded images above the limit {MAX_TOTAL_IMAGE_BYTES} bytes"
-                        ));
-                    }
-                    textures.push(tex);
-                    by_image.insert((ii, role), textures.len() - 1);
-                    textures.len() - 1
-                }
-            };
-            base_color_texture = Some(slot);
-        }
-        materials.push(Material {
-            name: mat.name().map(str::to_owned),
-            base_color_factor: factor,
-            base_color_texture,
-            normal_texture: None,
-        });
-    }
-    Ok((materials, textures))
-}
-
-/// Image `index`'s bytes as the file holds them (PNG, JPEG or KTX2).
-fn image_source(
-    doc: &gltf::Document,
-    buffers: &Buffers<'_>,
-    resolve: &dyn Fn(&str) -> Result<Vec<u8>, String>,
-    index: usize,
-) -> Result<Vec<u8>, String> {
-    let what = format!("image {index}");
-    let image = doc
-        .images()
-        .nth(index)
-        .ok_or_else(|| format!("missing {what}"))?;
-    match image.source() {
-        gltf::image::Source::View { view, .. } => view_bytes(buffers, &view)
-            .map(<[u8]>::to_vec)
-            .map_err(|e| format!("{what}: {e}")),
-        gltf::image::Source::Uri { uri, .. } => {
-            match resolve_uri(uri).map_err(|e| format!("{what}: {e}"))? {
-                UriRef::Data(d) => Ok(d),
-                UriRef::Relative(p) => resolve(&p).map_err(|e| format!("{what}: {e}")),
-            }
-        }
-    }
-}
-
-/// Image `index` for `role`: its block encodings where `cargo xtask assets` made them beside
-/// the model file (checked against the source's
-/// hash and size) or the image is a KTX2 file itself, else the image decoded. See
-/// [`sidecar_path`].
-fn load_image(
-    doc: &gltf::Document,
-    buffers: &Buffers<'_>,
-    resolve: &dyn Fn(&str) -> Result<Vec<u8>, String>,
-    index: usize,
-    role: TextureRole,
-    file: &str,
-) -> Result<TextureImage, String> {
-    let what = format!("image {index}");
-    let source = image_source(doc, buffers, resolve, index)?;
-    let sidecar = |family: Family| sidecar_path(file, Some(index), role, family);
-    encoded_texture(&source, role, &sidecar, resolve, &what)
 }

@@ -14,13 +14,15 @@
 //! - A node with a skin needs `JOINTS_0`/`WEIGHTS_0` on every primitive of its mesh, and each
 //!   joint index (even with zero weight) must be below the skin's joint count.
 //! - Non-triangle primitives (points, lines, strips, fans) are skipped with a warning.
-//! - Only base-colour textures are loaded (sRGB): the image decoded to RGBA8, or, where
-//!   `cargo xtask assets` encoded it beside the model (`<file>.textures/`, see
-//!   [`compressed`]), its GPU block encodings, which the renderer uploads as they are where
-//!   the device samples them. Materials are drawn opaque, and the
-//!   alpha of a base-colour texture is the *skin mask* (255: skin, shaded by the subsurface
-//!   models; 0: cloth): kept from the file where the material's `extras` declare it
-//!   ([`SKIN_MASK_EXTRAS`]), else set to 255 (the whole material is skin).
+//! - Materials are read whole ([`Material`]: metallic-roughness PBR, normal, occlusion,
+//!   emissive, alpha mode, double-sidedness and the volume, volume-scatter, diffuse-transmission,
+//!   IOR and emissive-strength extensions), each texture decoded once per role it is used in
+//!   (colour: sRGB, data: linear), pixels as the file has them — or, where `cargo xtask
+//!   assets` encoded it beside the model (`<file>.textures/`, see [`compressed`]), its GPU
+//!   block encodings, which the renderer uploads as they are where the device samples them.
+//!   A bad material value, a missing or undecodable texture gets a warning
+//!   ([`Model::warnings`]) and a fallback, never an error. Which materials are skin is
+//!   [`skin::classify`]'s decision.
 
 mod accessor;
 mod animation;
@@ -30,15 +32,19 @@ mod glb;
 mod images;
 pub mod limits;
 mod load;
+mod material;
+mod materials;
 mod model;
 mod nodes;
 pub mod shapes;
+pub mod skin;
 pub mod tangents;
 mod uri;
 mod vertices;
 
-pub use compressed::SKIN_MASK_EXTRAS;
 pub use compressed::{BlockFormat, BlockImage, Family, TextureRole};
 pub use error::AssetError;
 pub use load::{dir_reader, load_gltf, load_gltf_slice};
+pub use material::*;
+pub use materials::MATERIAL_EXTENSIONS;
 pub use model::*;

@@ -3,6 +3,8 @@
 
 use glam::{Mat4, Quat, Vec3};
 
+use super::Material;
+
 /// One vertex as uploaded to the GPU (76 bytes, `#[repr(C)]`).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
@@ -92,27 +94,19 @@ pub struct Skin {
     pub inverse_bind: Vec<Mat4>,
 }
 
-#[derive(Clone, Debug)]
-pub struct Material {
-    pub name: Option<String>,
-    pub base_color_factor: [f32; 4],
-    /// Index into [`Model::textures`].
-    pub base_color_texture: Option<usize>,
-    /// A tangent-space normal map (index into [`Model::textures`], linear RGB: xyz = 2·rgb − 1
-    /// in the vertex's tangent, bitangent and normal, +y toward decreasing v, the OpenGL
-    /// convention). glTF files do not set it (their materials shade with the vertex normals);
-    /// the scanned head's loader does (`face::head`).
-    pub normal_texture: Option<usize>,
-}
-
-/// An image a material samples, `srgb` when it holds colour (base colour textures). Alpha is
-/// the skin mask (see the [module docs](super)): 255 = skin, 0 = cloth.
+/// An image a material samples, as the file has it: decoded RGBA8, or its GPU block
+/// encodings (see [`Texels`]). `srgb` when a material uses it as colour (base colour,
+/// emissive, multi-scatter colour, …; see [`Material`](super::Material)), linear when as data
+/// (normal, metallic-roughness, occlusion, …).
 #[derive(Clone, Debug)]
 pub struct TextureImage {
     pub width: u32,
     pub height: u32,
     pub texels: Texels,
     pub srgb: bool,
+    /// The glTF image it was read from (its index in the file); `None` for an image that is
+    /// not a glTF file's (the scanned head's maps, a test's).
+    pub image: Option<usize>,
 }
 
 /// What a [`TextureImage`] holds.
@@ -133,6 +127,7 @@ impl TextureImage {
             height,
             texels: Texels::Rgba8(rgba8),
             srgb,
+            image: None,
         }
     }
 }
@@ -183,4 +178,7 @@ pub struct Model {
     pub materials: Vec<Material>,
     pub textures: Vec<TextureImage>,
     pub animations: Vec<AnimationClip>,
+    /// What the loader recovered from in the materials and textures (a bad value, a missing
+    /// or undecodable texture…), one line each naming the file; each was also logged.
+    pub warnings: Vec<String>,
 }

@@ -55,14 +55,15 @@ fn skinned_model(name: &str, vertices: Vec<Vertex>, indices: Vec<u32>, half: f32
             joints: vec![0],
             inverse_bind: vec![Mat4::IDENTITY],
         }],
+        // Named for the name rule (`asset::skin`): these shapes are the skin models' subjects.
         materials: vec![Material {
-            name: None,
-            base_color_factor: [1.0; 4],
-            base_color_texture: None,
-            normal_texture: None,
+            name: Some("skin".into()),
+            metallic_factor: 0.0,
+            ..Material::default()
         }],
         textures: Vec::new(),
         animations: Vec::new(),
+        warnings: Vec::new(),
     }
 }
 

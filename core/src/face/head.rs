@@ -16,7 +16,8 @@ use crate::asset::{
     dir_reader, load_gltf_slice, Aabb, AssetError, Model, Node, Skin, TextureImage, TextureRole,
     Transform,
 };
-use crate::render::{DrawSet, FrameView, Gpu, Light, Offscreen, Renderer, RgbaImage};
+use crate::render::{Gpu, Offscreen, Renderer, RgbaImage};
+use crate::scene::{DrawSet, FramePacket, FrameView, Light, Roles, SubjectPose, EXPOSURE};
 use crate::shading::{Material, ShadingModel};
 
 /// The head's folder under the assets root.
@@ -37,6 +38,13 @@ Infinite-Realities (ir-ltd.net), based on a work at triplegangers.com, CC BY 3.0
 pub const CREDIT_LINES: [&str; 2] = [
     "Head scan: Lee Perry-Smith / Infinite-Realities (ir-ltd.net)",
     "based on a work at triplegangers.com, CC BY 3.0",
+];
+
+/// The head's maps (files in [`DIR`]) in the roles the head's material reads them: what
+/// [`load_from`] loads and `cargo xtask assets` encodes.
+pub const MAPS: [(&str, TextureRole); 2] = [
+    (ALBEDO_FILE, TextureRole::Colour),
+    (NORMAL_FILE, TextureRole::Data),
 ];
 
 /// Which of the head's maps [`load_with`] reads.
@@ -135,11 +143,12 @@ pub fn load_from(
     primitive.bounds = Aabb { min: lo, max: hi };
     primitive.material = Some(0);
     let mut textures = Vec::new();
+    let [(albedo, colour), (normal, data)] = MAPS;
     if maps.albedo {
-        textures.push(read_map(read, ALBEDO_FILE, TextureRole::BaseColor)?);
+        textures.push(read_map(read, albedo, colour)?);
     }
     if maps.normal {
-        textures.push(read_map(read, NORMAL_FILE, TextureRole::Normal)?);
+        textures.push(read_map(read, normal, data)?);
     }
     let node = |mesh, skin| Node {
         name: None,
@@ -164,12 +173,14 @@ pub fn load_from(
         }],
         materials: vec![crate::asset::Material {
             name: Some("skin".into()),
-            base_color_factor: [1.0; 4],
             base_color_texture: maps.albedo.then_some(0),
+            metallic_factor: 0.0,
             normal_texture: maps.normal.then(|| textures.len() - 1),
+            ..crate::asset::Material::default()
         }],
         textures,
         animations: Vec::new(),
+        warnings: Vec::new(),
     })
 }
 
@@ -266,12 +277,48 @@ impl HeadRenderer {
         };
         let mut renderer = Renderer::new(gpu, format);
         if hdr {
-            renderer.clear = wgpu::Color::BLACK;
+            renderer.set_clear(wgpu::Color::BLACK);
         }
-        renderer.load_character(gpu, model, material)?;
+        // The albedo map is the skin's pigment; without it the head is the medium itself.
+        let textured = model
+            .materials
+            .iter()
+            .any(|m| m.base_color_texture.is_some());
+        let roles = match textured {
+            true => Roles {
+                optics: material.clone(),
+                ..Roles::of(model)
+            },
+            false => Roles::medium(material),
+        };
+        renderer.load_character(gpu, model, &roles)?;
+        renderer.resize(gpu, (width, height));
+        // Posed once, in its rest pose: a frame that poses it and draws nothing.
         let mut pose = Pose::new(model);
         pose.update_world(model);
-        renderer.update_character(&gpu.queue, model, &pose, Mat4::IDENTITY);
+        let view = FrameView {
+            view_proj: Mat4::IDENTITY,
+            camera_pos: Vec3::ZERO,
+            light: Light::default(),
+            exposure: EXPOSURE,
+        };
+        let nothing = DrawSet {
+            shading: None,
+            character: false,
+            props: false,
+            ui: false,
+        };
+        renderer.prepare(
+            gpu,
+            &FramePacket {
+                subject: Some(SubjectPose {
+                    model,
+                    pose: &pose,
+                    world: Mat4::IDENTITY,
+                }),
+                ..FramePacket::new((width, height), view, nothing)
+            },
+        );
         Ok(Self {
             renderer,
             target: Offscreen::with_format(gpu, width, height, format),
@@ -281,7 +328,7 @@ impl HeadRenderer {
 
     /// Switches the material (the model keeps its geometry).
     pub fn set_material(&self, gpu: &Gpu, material: &Material) {
-        self.renderer.set_material(&gpu.queue, material);
+        self.renderer.set_material(gpu, material);
     }
 
     fn draw(&mut self, gpu: &Gpu, shading: Option<ShadingModel>, camera: &Camera, light: Light) {
@@ -296,15 +343,18 @@ impl HeadRenderer {
             ),
             camera_pos: camera.eye,
             light,
-            exposure: crate::render::EXPOSURE,
+            exposure: EXPOSURE,
         };
-        self.renderer.prepare(&gpu.queue, &view);
         let draw = DrawSet {
             shading,
             character: true,
             props: false,
+            ui: false,
         };
-        self.renderer.draw_offscreen(gpu, &self.target, draw);
+        let frame = self
+            .renderer
+            .prepare(gpu, &FramePacket::new((w, h), view, draw));
+        self.renderer.draw_offscreen(gpu, &self.target, &frame);
     }
 
     /// Linear radiance [W m⁻² sr⁻¹] per pixel (rows top to bottom) under a white point light

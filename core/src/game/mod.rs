@@ -22,7 +22,7 @@ pub use track::{Chunk, Obstacle, ObstacleKind, LANE_WIDTH};
 use glam::{Mat4, Quat, Vec3};
 
 use crate::pool::Pool;
-use crate::render::{PropInstance, PropKind};
+use crate::scene::{PropInstance, PropKind};
 use rng::Pcg32;
 use track::{row_pattern, CHUNK_LEN, MAX_CHUNKS, MAX_OBSTACLES};
 

@@ -7,7 +7,7 @@ use super::{
     Clip, Game, Input, Screen, Swipe, ACCELERATION, GRAVITY, JUMP_SPEED, LANE_FOLLOW, MAX_SPEED,
     PLAYER_HALF_DEPTH, PLAYER_HALF_WIDTH, PLAYER_HEIGHT, TICK_DT,
 };
-use crate::render::rig::CHARACTER;
+use crate::scene::CHARACTER;
 
 impl Game {
     pub(super) fn play_tick(&mut self, input: &Input) {

@@ -4,7 +4,7 @@
 use glam::{Mat4, Quat, Vec3};
 
 use super::rng::Pcg32;
-use crate::render::PropKind;
+use crate::scene::PropKind;
 
 /// Length of one map chunk along the track (two 4 m floor tiles).
 pub const CHUNK_LEN: f32 = 8.0;

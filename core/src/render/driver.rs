@@ -1,8 +1,8 @@
 //! One frame driver for every shell, in the shape of wgpu's examples `framework.rs`: the shell
 //! owns its window and event loop (or none), the app is a [`FrameWork`], and
-//! [`FrameDriver::frame`] runs one frame of it — dt → update → upload → encode → submit →
-//! present — into a window surface ([`SurfaceTarget`]) or an [`Offscreen`] target, and says
-//! when each step ended ([`FrameTimes`]).
+//! [`FrameDriver::frame`] runs one frame of it — resize (to the output's size) → dt → update
+//! → upload → encode → submit → present — into a window surface ([`SurfaceTarget`])
+//! or an [`Offscreen`] target, and says when each step ended ([`FrameTimes`]).
 //!
 //! Options the shells differ in, all here: the clock ([`Clock`]: the wall clock, or a fixed
 //! step for reproducible headless runs), swapchain-like back-pressure for offscreen targets
@@ -15,7 +15,7 @@ use std::collections::VecDeque;
 use std::time::Instant;
 
 use super::offscreen::Offscreen;
-use super::renderer::RenderStats;
+use super::prepared::RenderStats;
 use super::surface::{FrameStatus, SurfaceTarget};
 use super::targets::Targets;
 use super::timer::TimerRing;
@@ -31,10 +31,13 @@ pub struct FrameOutput<'a> {
 
 /// What a frame driver drives: the app's per-frame work.
 pub trait FrameWork {
+    /// The output is `width` × `height` (called before every frame's update): make what
+    /// depends on the size when it changed.
+    fn resize(&mut self, gpu: &Gpu, width: u32, height: u32);
     /// CPU work: advance by `dt` seconds, for an output of `width` × `height`.
     fn update(&mut self, dt: f64, width: u32, height: u32);
     /// This frame's buffer writes.
-    fn upload(&mut self, queue: &wgpu::Queue);
+    fn upload(&mut self, gpu: &Gpu);
     /// Records the frame's passes into `encoder`.
     fn encode(
         &mut self,
@@ -290,14 +293,15 @@ impl FrameDriver {
         out: &FrameOutput<'_>,
         status: FrameStatus,
     ) -> FrameTimes {
+        let (width, height) = (out.targets.width, out.targets.height);
+        work.resize(gpu, width, height);
         let start = Instant::now();
         let dt = self.dt(start);
         let a_start = self.count();
-        let (width, height) = (out.targets.width, out.targets.height);
         work.update(dt, width, height);
         let updated = Instant::now();
         let a_updated = self.count();
-        work.upload(&gpu.queue);
+        work.upload(gpu);
         let mut encoder = gpu
             .device
             .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());

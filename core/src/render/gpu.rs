@@ -228,6 +228,14 @@ impl Gpu {
         self.pipeline_cache = PipelineCacheFile::open(&self.device, &self.adapter.get_info(), dir);
     }
 
+    /// What the renderer's pipelines are made with: the device and its pipeline cache.
+    pub fn pipelines(&self) -> super::pipelines::PipelineDevice<'_> {
+        super::pipelines::PipelineDevice {
+            device: &self.device,
+            cache: self.pipeline_cache.as_ref().map(PipelineCacheFile::cache),
+        }
+    }
+
     /// Writes the pipeline cache (after the pipelines are built, and at exit): its size in
     /// bytes, `None` without a cache; a failure is one logged line.
     pub fn save_pipeline_cache(&self) -> Option<usize> {

@@ -1,12 +1,14 @@
 //! Bind group layouts, created once.
 
-/// Group 0: the frame uniform and the shadow map. Group 1: a shading model's parameters (and LUT). Group 2: the skinned
-/// object (joint palette, base colour, sampler, tangent-space normal map). Props: group 1 is their material.
+/// Group 0: the frame uniform, the shadow map and the penumbra map. Group 1: a shading model's
+/// parameters (and LUT). Group 2: a skin's joint palette. Group 3: a material (its uniform,
+/// base colour, normal, metallic-roughness, occlusion and emissive textures, their sampler:
+/// `material_gpu.rs`). Props bind a material at group 1.
 pub struct Layouts {
     pub frame: wgpu::BindGroupLayout,
     pub model: wgpu::BindGroupLayout,
     pub skinned: wgpu::BindGroupLayout,
-    pub prop_material: wgpu::BindGroupLayout,
+    pub material: wgpu::BindGroupLayout,
 }
 
 pub(super) fn uniform(binding: u32, visibility: wgpu::ShaderStages) -> wgpu::BindGroupLayoutEntry {
@@ -101,21 +103,17 @@ impl Layouts {
                     sampler(2),
                 ],
             ),
-            skinned: make(
-                "skinned object",
+            skinned: make("joint palette", &[uniform(0, wgpu::ShaderStages::VERTEX)]),
+            material: make(
+                "material",
                 &[
-                    uniform(0, wgpu::ShaderStages::VERTEX),
+                    uniform(0, wgpu::ShaderStages::FRAGMENT),
                     texture(1),
-                    sampler(2),
+                    texture(2),
                     texture(3),
-                ],
-            ),
-            prop_material: make(
-                "prop material",
-                &[
-                    texture(0),
-                    sampler(1),
-                    uniform(2, wgpu::ShaderStages::FRAGMENT),
+                    texture(4),
+                    texture(5),
+                    sampler(6),
                 ],
             ),
         }

@@ -27,10 +27,12 @@ pub struct ModelGpu {
     pub kernel: Option<wgpu::Buffer>,
 }
 
-/// The records of the models a renderer can draw, plus the unlit baseline's constants.
+/// The records of the models a renderer can draw, plus the unlit baseline's constants and,
+/// where the set asks for it, its pipeline.
 pub struct ModelTable {
     models: Vec<ModelGpu>,
     unlit: wgpu::BindGroup,
+    unlit_pipeline: Option<wgpu::RenderPipeline>,
 }
 
 impl ModelTable {
@@ -106,7 +108,11 @@ impl ModelTable {
             })
             .collect();
         let unlit = bind(&uniform("unlit", ModelParams::SIZE), &no_lut);
-        Self { models, unlit }
+        Self {
+            models,
+            unlit,
+            unlit_pipeline: None,
+        }
     }
 
     /// The models recorded, in menu order.
@@ -144,9 +150,24 @@ impl ModelTable {
         }
     }
 
-    /// The built pipeline of `key`, if any.
-    pub fn pipeline(&self, (model, normal_mapped): PipelineKey) -> Option<&wgpu::RenderPipeline> {
-        self.get(model)?.pipelines[usize::from(normal_mapped)].as_ref()
+    /// The built pipeline of `key` (`None`: the unlit baseline's), if any.
+    pub fn pipeline(&self, key: Option<PipelineKey>) -> Option<&wgpu::RenderPipeline> {
+        match key {
+            Some((model, normal_mapped)) => {
+                self.get(model)?.pipelines[usize::from(normal_mapped)].as_ref()
+            }
+            None => self.unlit_pipeline.as_ref(),
+        }
+    }
+
+    /// Whether the pipeline of `key` is built.
+    pub fn draws(&self, key: Option<PipelineKey>) -> bool {
+        self.pipeline(key).is_some()
+    }
+
+    /// Installs the unlit baseline's pipeline.
+    pub fn install_unlit(&mut self, pipeline: wgpu::RenderPipeline) {
+        self.unlit_pipeline = Some(pipeline);
     }
 
     /// Installs the pipeline of `key` (a model not recorded has nowhere to keep it: dropped).

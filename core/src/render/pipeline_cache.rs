@@ -5,11 +5,10 @@
 //! of the adapter and driver that made it, the data's length and its FNV-1a 64 hash. A file
 //! that is truncated, corrupt, or made by another adapter or driver is ignored with one logged
 //! line (the driver would be handed bytes it never wrote otherwise); a missing one is the
-//! first launch. Renderer code finds the cache of its device with [`for_device`] (the
-//! pipeline builders get a `&wgpu::Device`).
+//! first launch. The `Gpu` keeps it; every pipeline builder gets it with the device
+//! ([`super::Gpu::pipelines`], the passes' `BuildCtx`, `CharacterPipelines`).
 
 use std::path::{Path, PathBuf};
-use std::sync::Mutex;
 
 use crate::asset::compressed::fnv1a64;
 
@@ -75,41 +74,10 @@ pub fn wrap(data: &[u8], key: &str) -> Vec<u8> {
     out
 }
 
-/// Every live cache by its device's key (a few entries: one per `Gpu` with a cache).
-static CACHES: Mutex<Vec<(usize, wgpu::PipelineCache)>> = Mutex::new(Vec::new());
-
-/// A key unique to `device` among the process's live devices: the address of its Vulkan
-/// device object (the only backend with a pipeline cache). wgpu's own `==` on devices compares
-/// ids, which repeat across instances (every `Gpu` has its own), so two `Gpu`s would share a
-/// cache and wgpu would panic on the foreign one.
-fn device_key(device: &wgpu::Device) -> Option<usize> {
-    // SAFETY: only the address of wgpu-hal's device object is taken, nothing is called on it,
-    // and the guard is dropped at once.
-    let hal = unsafe { device.as_hal::<wgpu::hal::api::Vulkan>() }?;
-    Some(&*hal as *const wgpu::hal::vulkan::Device as usize)
-}
-
-/// The pipeline cache of `device`, where its `Gpu` has one: every pipeline the renderer
-/// builds passes it.
-pub fn for_device(device: &wgpu::Device) -> Option<wgpu::PipelineCache> {
-    let caches = CACHES.lock().unwrap_or_else(|e| e.into_inner());
-    if caches.is_empty() {
-        return None;
-    }
-    let key = device_key(device)?;
-    caches
-        .iter()
-        .find(|(k, _)| *k == key)
-        .map(|(_, c)| c.clone())
-}
-
 /// A device's pipeline cache and the file it is kept in.
 pub struct PipelineCacheFile {
     pub path: PathBuf,
     key: String,
-    /// Its device's [`device_key`] (the device is kept alive with it).
-    device_key: usize,
-    _device: wgpu::Device,
     cache: wgpu::PipelineCache,
     /// Whether the cache started from the file's data.
     pub loaded: bool,
@@ -125,7 +93,6 @@ impl PipelineCacheFile {
             return None;
         }
         let key = cache_key(info)?;
-        let device_key = device_key(device)?;
         let path = dir.join(FILE);
         let bytes = match std::fs::read(&path) {
             Ok(bytes) => Some(bytes),
@@ -159,18 +126,17 @@ impl PipelineCacheFile {
         if loaded {
             log::info!("pipeline cache: {} loaded", path.display());
         }
-        CACHES
-            .lock()
-            .unwrap_or_else(|e| e.into_inner())
-            .push((device_key, cache.clone()));
         Some(Self {
             path,
             key,
-            device_key,
-            _device: device.clone(),
             cache,
             loaded,
         })
+    }
+
+    /// The cache the device's pipelines pass through ([`super::Gpu::pipelines`]).
+    pub fn cache(&self) -> &wgpu::PipelineCache {
+        &self.cache
     }
 
     /// Writes the cache's data (atomically: a temporary file renamed); returns its size.
@@ -192,13 +158,11 @@ impl PipelineCacheFile {
 }
 
 impl Drop for PipelineCacheFile {
-    /// Saves the cache (at exit: whatever was built since the last save) and forgets it.
+    /// Saves the cache (at exit: whatever was built since the last save).
     fn drop(&mut self) {
         if let Err(e) = self.save() {
             log::warn!("pipeline cache not saved at exit: {e}");
         }
-        let mut caches = CACHES.lock().unwrap_or_else(|e| e.into_inner());
-        caches.retain(|(k, c)| !(*k == self.device_key && c == &self.cache));
     }
 }
 

@@ -1,14 +1,17 @@
-//! Render pipelines: one per character shading model (composed from `character.wgsl` with
-//! `shading_model` bound to the model's file) and one for props. All built at load — or, for
-//! a quick first frame, the first model's at load and the others' on a background thread
-//! started after the first frame ([`Pipelines::new`] with `first`), installed as they arrive.
+//! The character pipelines: one per shading model the scene can reach (composed from
+//! `character.wgsl` with `shading_model` bound to the model's file), for meshes without a
+//! normal map and with one. All built at load — or, for a quick first frame, the first model's
+//! at load and the others' on a background thread started after the first frame
+//! ([`CharacterPipelines::new`] with `first`), installed into the models' records as they
+//! arrive. Also the one way every render pipeline of the renderer is described
+//! ([`pipeline`], [`targets`]).
 
 use std::sync::mpsc;
 
 use super::layouts::Layouts;
-use super::mesh::{instance_layout, vertex_layout};
+use super::mesh::vertex_layout;
 use super::model_gpu::{ModelTable, PipelineKey};
-use super::sss_pass::SPLIT_FORMAT;
+use super::passes::subsurface::SPLIT_FORMAT;
 use super::targets::{depth_state, multisample, MSAA_SAMPLES};
 use crate::shader::{compose, ShaderDefs};
 use crate::shading::ShadingModel;
@@ -64,16 +67,17 @@ impl PipelineSet {
 }
 
 /// The character pipelines: those built at load wait in `ready` until the renderer installs
-/// them into its [`ModelTable`]; the rest of the set is built on a background thread and
-/// installed as it arrives. The unlit baseline's, if requested, lives here.
+/// them into its [`ModelTable`] (the unlit baseline's among them, where the set asks for it);
+/// the rest of the set is built on a background thread and installed as it arrives.
 pub struct CharacterPipelines {
-    /// Built, not yet installed.
-    ready: Vec<(PipelineKey, wgpu::RenderPipeline)>,
+    /// Built, not yet installed (`None`: the unlit baseline).
+    ready: Vec<(Option<PipelineKey>, wgpu::RenderPipeline)>,
     layout: wgpu::PipelineLayout,
     format: wgpu::TextureFormat,
-    pub unlit: Option<wgpu::RenderPipeline>,
     /// The requested pipelines not yet received from the background builder.
     pending: Vec<PipelineKey>,
+    /// The pipeline cache every pipeline passes through (the `Gpu`'s, if it keeps one).
+    cache: Option<wgpu::PipelineCache>,
     /// What the builder needs, until [`Self::start_builder`] spawns it.
     builder: Option<wgpu::Device>,
     arrivals: Option<mpsc::Receiver<(PipelineKey, wgpu::RenderPipeline)>>,
@@ -84,11 +88,14 @@ impl CharacterPipelines {
     /// has finished; blocks for `need`'s (the pipeline about to draw) or, with `all`, for
     /// every one still pending. A builder that died leaves its pipelines unbuilt (logged;
     /// their models draw nothing).
-    pub fn receive(&mut self, table: &mut ModelTable, need: Option<PipelineKey>, all: bool) {
+    pub fn receive(&mut self, table: &mut ModelTable, need: &[PipelineKey], all: bool) {
         for (key, pipeline) in self.ready.drain(..) {
-            table.install(key, pipeline);
+            match key {
+                Some(key) => table.install(key, pipeline),
+                None => table.install_unlit(pipeline),
+            }
         }
-        let blocking = |pending: &[PipelineKey]| all || need.is_some_and(|k| pending.contains(&k));
+        let blocking = |pending: &[PipelineKey]| all || need.iter().any(|k| pending.contains(k));
         if blocking(&self.pending) {
             self.start_builder();
         }
@@ -125,11 +132,16 @@ impl CharacterPipelines {
         };
         let (tx, rx) = mpsc::channel();
         let (layout, format, rest) = (self.layout.clone(), self.format, self.pending.clone());
+        let cache = self.cache.clone();
         let spawned = std::thread::Builder::new()
             .name("dermis-pipelines".into())
             .spawn(move || {
+                let dev = PipelineDevice {
+                    device: &device,
+                    cache: cache.as_ref(),
+                };
                 for key in rest {
-                    let p = model_pipeline(&device, &layout, format, key);
+                    let p = model_pipeline(dev, &layout, format, key);
                     if tx.send((key, p)).is_err() {
                         return;
                     }
@@ -139,6 +151,11 @@ impl CharacterPipelines {
             log::error!("cannot start the pipeline builder: {e}");
         }
         self.arrivals = Some(rx);
+    }
+
+    /// The pipeline layout every character pipeline shares (frame, model, palette, material).
+    pub fn layout(&self) -> &wgpu::PipelineLayout {
+        &self.layout
     }
 
     /// Whether some requested pipeline is still being built.
@@ -152,30 +169,26 @@ impl CharacterPipelines {
     pub fn add_normal_mapped(&mut self, table: &mut ModelTable, device: &wgpu::Device) {
         for model in table.models() {
             let key = (model, true);
-            let built = table.pipeline(key).is_some() || self.ready.iter().any(|(k, _)| *k == key);
+            let built = table.draws(Some(key)) || self.ready.iter().any(|(k, _)| *k == Some(key));
             if built || self.pending.contains(&key) {
                 continue;
             }
             if self.builder.is_some() {
                 self.pending.push(key);
             } else {
-                table.install(key, model_pipeline(device, &self.layout, self.format, key));
+                let dev = PipelineDevice {
+                    device,
+                    cache: self.cache.as_ref(),
+                };
+                table.install(key, model_pipeline(dev, &self.layout, self.format, key));
             }
         }
     }
 }
 
-pub struct Pipelines {
-    pub character: CharacterPipelines,
-    pub prop: wgpu::RenderPipeline,
-    /// Props in a frame with the subsurface pass (two linear targets); only when the set
-    /// needs that pass.
-    pub prop_split: Option<wgpu::RenderPipeline>,
-}
-
-/// The colour targets of a pipeline: the output format, or the two linear targets of a
+/// The colour targets of a pipeline: the output format, or the three linear targets of a
 /// frame with the subsurface pass.
-fn targets(format: wgpu::TextureFormat, split: bool) -> Vec<Option<wgpu::ColorTargetState>> {
+pub fn targets(format: wgpu::TextureFormat, split: bool) -> Vec<Option<wgpu::ColorTargetState>> {
     let target = |format| {
         Some(wgpu::ColorTargetState {
             format,
@@ -184,128 +197,107 @@ fn targets(format: wgpu::TextureFormat, split: bool) -> Vec<Option<wgpu::ColorTa
         })
     };
     if split {
-        vec![target(SPLIT_FORMAT), target(SPLIT_FORMAT)]
+        vec![
+            target(SPLIT_FORMAT),
+            target(SPLIT_FORMAT),
+            target(SPLIT_FORMAT),
+        ]
     } else {
         vec![target(format)]
     }
 }
 
-impl Pipelines {
+impl CharacterPipelines {
     /// The pipelines of `set`: every one now, or with `first` (a model of the set) only that
-    /// model's character pipeline now and the others' on a background thread
-    /// ([`CharacterPipelines::receive`] installs them).
+    /// model's now and the others' on a background thread ([`Self::receive`] installs them).
     pub fn new(
-        device: &wgpu::Device,
+        dev: PipelineDevice,
         layouts: &Layouts,
         format: wgpu::TextureFormat,
         set: &PipelineSet,
         first: Option<ShadingModel>,
     ) -> Self {
-        let character_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        let device = dev.device;
+        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("character"),
             bind_group_layouts: &[
                 Some(&layouts.frame),
                 Some(&layouts.model),
                 Some(&layouts.skinned),
+                Some(&layouts.material),
             ],
             immediate_size: 0,
         });
-        let prop_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("prop"),
-            bind_group_layouts: &[Some(&layouts.frame), Some(&layouts.prop_material)],
-            immediate_size: 0,
-        });
-        let character = |label: &str, source: String, split: bool| {
-            character_pipeline(device, &character_layout, format, label, source, split)
-        };
         let now: Vec<ShadingModel> = match first.filter(|m| set.models.contains(m)) {
             Some(m) => vec![m],
             None => set.models.clone(),
         };
-        let built = now
+        let mut ready: Vec<(Option<PipelineKey>, wgpu::RenderPipeline)> = now
             .iter()
             .map(|&m| {
                 let key = (m, false);
-                (key, model_pipeline(device, &character_layout, format, key))
+                (Some(key), model_pipeline(dev, &layout, format, key))
             })
             .collect();
+        if set.unlit {
+            let src = compose(
+                "character",
+                &ShaderDefs::new().alias("shading_model", "unlit"),
+            )
+            .expect("built-in shaders compose");
+            ready.push((
+                None,
+                character_pipeline(dev, &layout, format, "unlit", src, false),
+            ));
+        }
         let pending: Vec<PipelineKey> = set
             .models
             .iter()
             .filter(|m| !now.contains(m))
             .map(|&m| (m, false))
             .collect();
-        // Deferred (`first`): the builder starts later, with what is pending then.
-        let builder = first.is_some().then(|| device.clone());
-        let unlit = set.unlit.then(|| {
-            let src = compose(
-                "character",
-                &ShaderDefs::new().alias("shading_model", "unlit"),
-            )
-            .expect("built-in shaders compose");
-            character("unlit", src, false)
-        });
-        let prop = |defs: &ShaderDefs, split: bool| {
-            let src = compose("prop", defs).expect("built-in shaders compose");
-            let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                label: Some("prop"),
-                source: wgpu::ShaderSource::Wgsl(src.into()),
-            });
-            pipeline(
-                device,
-                &prop_layout,
-                &module,
-                &targets(format, split),
-                &[vertex_layout(), instance_layout()],
-                "prop",
-            )
-        };
-        let prop_split = set
-            .needs_subsurface_pass()
-            .then(|| prop(&ShaderDefs::new().flag("SCREEN_SPACE"), true));
         Self {
-            character: CharacterPipelines {
-                ready: built,
-                unlit,
-                layout: character_layout,
-                format,
-                pending,
-                builder,
-                arrivals: None,
-            },
-            prop: prop(&ShaderDefs::new(), false),
-            prop_split,
+            ready,
+            layout,
+            format,
+            pending,
+            cache: dev.cache.cloned(),
+            // Deferred (`first`): the builder starts later, with what is pending then.
+            builder: first.is_some().then(|| device.clone()),
+            arrivals: None,
         }
     }
 }
 
 /// The character pipeline of `model`, for meshes with a normal map or without.
 fn model_pipeline(
-    device: &wgpu::Device,
+    dev: PipelineDevice,
     layout: &wgpu::PipelineLayout,
     format: wgpu::TextureFormat,
     (model, normal_map): PipelineKey,
 ) -> wgpu::RenderPipeline {
     let split = model.effects().screen_space;
     let source = shader_source(model, normal_map);
-    character_pipeline(device, layout, format, model.name(), source, split)
+    character_pipeline(dev, layout, format, model.name(), source, split)
 }
 
 /// A character pipeline from composed WGSL.
 fn character_pipeline(
-    device: &wgpu::Device,
+    dev: PipelineDevice,
     layout: &wgpu::PipelineLayout,
     format: wgpu::TextureFormat,
     label: &str,
     source: String,
     split: bool,
 ) -> wgpu::RenderPipeline {
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some(label),
-        source: wgpu::ShaderSource::Wgsl(source.into()),
-    });
+    let module = dev
+        .device
+        .create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some(label),
+            source: wgpu::ShaderSource::Wgsl(source.into()),
+        });
     pipeline(
-        device,
+        dev,
         layout,
         &module,
         &targets(format, split),
@@ -314,40 +306,81 @@ fn character_pipeline(
     )
 }
 
-fn pipeline(
-    device: &wgpu::Device,
+/// What the renderer's pipelines are made with: the device and the pipeline cache they pass
+/// through (the `Gpu`'s, kept on disk between launches: [`super::Gpu::use_pipeline_cache`];
+/// `None`: none, as on GL).
+#[derive(Clone, Copy)]
+pub struct PipelineDevice<'a> {
+    pub device: &'a wgpu::Device,
+    pub cache: Option<&'a wgpu::PipelineCache>,
+}
+
+/// A render pipeline of the renderer: triangles, back faces culled, depth tested and
+/// written, 4× MSAA, `vs_main`/`fs_main` of `module`.
+pub fn pipeline(
+    dev: PipelineDevice,
     layout: &wgpu::PipelineLayout,
     module: &wgpu::ShaderModule,
     targets: &[Option<wgpu::ColorTargetState>],
     buffers: &[wgpu::VertexBufferLayout<'_>],
     label: &str,
 ) -> wgpu::RenderPipeline {
+    let opaque = Surfaces {
+        cull: Some(wgpu::Face::Back),
+        depth_write: true,
+    };
+    pipeline_with(dev, layout, module, targets, buffers, label, opaque)
+}
+
+/// Which faces a pipeline draws and whether it writes depth.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Surfaces {
+    /// The face culled (`None`: both drawn).
+    pub cull: Option<wgpu::Face>,
+    pub depth_write: bool,
+}
+
+/// [`pipeline`], with the faces drawn and depth writes as `surfaces` says (double-sided and
+/// blended materials).
+pub fn pipeline_with(
+    dev: PipelineDevice,
+    layout: &wgpu::PipelineLayout,
+    module: &wgpu::ShaderModule,
+    targets: &[Option<wgpu::ColorTargetState>],
+    buffers: &[wgpu::VertexBufferLayout<'_>],
+    label: &str,
+    surfaces: Surfaces,
+) -> wgpu::RenderPipeline {
     let buffers: Vec<Option<wgpu::VertexBufferLayout<'_>>> =
         buffers.iter().cloned().map(Some).collect();
-    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-        label: Some(label),
-        layout: Some(layout),
-        vertex: wgpu::VertexState {
-            module,
-            entry_point: Some("vs_main"),
-            compilation_options: Default::default(),
-            buffers: &buffers,
-        },
-        primitive: wgpu::PrimitiveState {
-            topology: wgpu::PrimitiveTopology::TriangleList,
-            front_face: wgpu::FrontFace::Ccw,
-            cull_mode: Some(wgpu::Face::Back),
-            ..Default::default()
-        },
-        depth_stencil: Some(depth_state(true, wgpu::CompareFunction::Less)),
-        multisample: multisample(MSAA_SAMPLES),
-        fragment: Some(wgpu::FragmentState {
-            module,
-            entry_point: Some("fs_main"),
-            compilation_options: Default::default(),
-            targets,
-        }),
-        multiview_mask: None,
-        cache: super::pipeline_cache::for_device(device).as_ref(),
-    })
+    dev.device
+        .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some(label),
+            layout: Some(layout),
+            vertex: wgpu::VertexState {
+                module,
+                entry_point: Some("vs_main"),
+                compilation_options: Default::default(),
+                buffers: &buffers,
+            },
+            primitive: wgpu::PrimitiveState {
+                topology: wgpu::PrimitiveTopology::TriangleList,
+                front_face: wgpu::FrontFace::Ccw,
+                cull_mode: surfaces.cull,
+                ..Default::default()
+            },
+            depth_stencil: Some(depth_state(
+                surfaces.depth_write,
+                wgpu::CompareFunction::Less,
+            )),
+            multisample: multisample(MSAA_SAMPLES),
+            fragment: Some(wgpu::FragmentState {
+                module,
+                entry_point: Some("fs_main"),
+                compilation_options: Default::default(),
+                targets,
+            }),
+            multiview_mask: None,
+            cache: dev.cache,
+        })
 }

@@ -4,7 +4,8 @@
 //! `shaders/` (embedded at compile time, so no file is read at run time; the shared modules
 //! are listed in `sources.rs`, each shading model's comes with its descriptor):
 //!
-//! * `#import name` inlines module `name` (`shaders/name.wgsl`) once per composed shader;
+//! * `#import name` inlines module `name` (`shaders/name.wgsl`; `consts`: the constants
+//!   shared with Rust, generated from the Rust values by `consts.rs`) once per composed shader;
 //!   a name can be an *alias* bound by the caller (the character shader imports
 //!   `shading_model`, bound to `ward`, `dipole`, `oss`, … per pipeline);
 //! * `#ifdef FLAG` / `#ifndef FLAG` / `#else` / `#endif` keep or drop lines by the caller's
@@ -14,6 +15,7 @@
 //! compiler (naga, tint) accepts. Selecting a shading model selects a file, not a branch.
 
 mod compose;
+pub mod consts;
 mod sources;
 
 pub use compose::{compose, compose_from, ComposeError, ShaderDefs};

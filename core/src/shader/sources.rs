@@ -22,6 +22,8 @@ pub const SHARED: &[(&str, &str)] = &[
     ),
     ("sss_pass", include_str!("../../../shaders/sss_pass.wgsl")),
     ("unlit", include_str!("../../../shaders/unlit.wgsl")),
+    ("material", include_str!("../../../shaders/material.wgsl")),
+    ("pbr", include_str!("../../../shaders/pbr.wgsl")),
     ("character", include_str!("../../../shaders/character.wgsl")),
     ("prop", include_str!("../../../shaders/prop.wgsl")),
     ("ui", include_str!("../../../shaders/ui.wgsl")),
@@ -33,12 +35,15 @@ pub const SHARED: &[(&str, &str)] = &[
     ),
 ];
 
-/// `(name, source)` of every module the composer can import: [`SHARED`], then each
-/// registered model's module (once, for models that share a file).
+/// `(name, source)` of every module the composer can import: the generated `consts`
+/// (`consts.rs`), [`SHARED`], then each registered model's module (once, for models that
+/// share a file).
 pub fn modules() -> &'static [(&'static str, &'static str)] {
+    static CONSTS: OnceLock<String> = OnceLock::new();
     static ALL: OnceLock<Vec<(&str, &str)>> = OnceLock::new();
     ALL.get_or_init(|| {
-        let mut all = SHARED.to_vec();
+        let mut all = vec![("consts", CONSTS.get_or_init(super::consts::wgsl).as_str())];
+        all.extend_from_slice(SHARED);
         for m in ShadingModel::ALL {
             let d = m.descriptor();
             if !all.iter().any(|(n, _)| *n == d.module) {

@@ -291,7 +291,7 @@ pub fn for_material(m: &Material) -> Arc<Bake> {
         (None, Some(baker)) => baker(m),
         (None, None) => nearest_shipped(m),
     });
-    cache.push((*m, bake.clone()));
+    cache.push((m.clone(), bake.clone()));
     bake
 }
 

@@ -1,5 +1,6 @@
-//! Spatial model `burley` (WGSL: `shaders/burley.wgsl`): Christensen–Burley normalised
-//! diffusion, spread over the screen by the subsurface pass.
+//! Spatial model `burley` (WGSL: `shaders/subsurface.wgsl`, shared by the screen-space
+//! models): Christensen–Burley normalised diffusion, spread over the screen by the subsurface
+//! pass.
 //!
 //! R(r) = A (e^{−r/d} + e^{−r/(3d)}) / (8π d r), which integrates to A over the plane, with the
 //! cumulative power inside r, A (1 − ¼e^{−r/d} − ¾e^{−r/(3d)}), in closed form: the pass's
@@ -100,8 +101,6 @@ pub fn kernel(m: &Material) -> Kernel {
 pub const BURLEY: Descriptor = Descriptor {
     name: "burley",
     label: "Burley diffusion",
-    module: "burley",
-    wgsl: include_str!("../../../shaders/burley.wgsl"),
     variant: None,
     effects: Effects {
         subsurface: true,

@@ -3,7 +3,7 @@
 //! relative to the fully lit medium. Exitance there is the kernel integrated over the lit
 //! half-plane, ESF(d) = ∫_{x < d} LSF(x) dx / ∫ LSF, so the shadow bleeds as far as the
 //! material carries light. `preintegrated` reads it from a row of its LUT, indexed by the
-//! distance the penumbra map gives (`render/penumbra.rs`).
+//! distance the penumbra map gives (`render/passes/penumbra.rs`).
 
 use super::bake::Bake;
 

@@ -7,6 +7,7 @@
 //! [`Descriptor`]), one WGSL file of the same name in `shaders/`, and its row below (with the
 //! `pub mod` that declares the file).
 
+pub mod albedo;
 pub mod bake;
 pub mod burley;
 pub mod dipole;
@@ -23,6 +24,7 @@ pub mod tabulated;
 pub mod transport;
 pub(crate) mod uniform;
 pub mod units;
+pub mod volume_optics;
 pub mod ward;
 
 pub use material::Material;

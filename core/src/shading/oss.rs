@@ -230,8 +230,6 @@ pub const OSS: Descriptor = Descriptor {
     effects: Effects {
         subsurface: true,
         translucency: true,
-        specular: true,
-        texture: true,
         ..Effects::NONE
     },
     uniform: OssUniform::LAYOUT,

@@ -183,7 +183,7 @@ pub fn lut(m: &Material) -> Arc<Lut> {
         .texels
         .extend(super::edge_spread::lut_row(&bake::for_material(m), LUT_U));
     let l = Arc::new(texture);
-    cache.push((*m, l.clone()));
+    cache.push((m.clone(), l.clone()));
     l
 }
 

@@ -58,10 +58,6 @@ pub struct Effects {
     pub subsurface: bool,
     /// OSS's translucency term 20ρ_ts/d^2.5.
     pub translucency: bool,
-    /// The Ward specular lobe.
-    pub specular: bool,
-    /// The base-colour texture tints the result.
-    pub texture: bool,
     /// The screen-space subsurface pass spreads the model's irradiance (its frames render
     /// linear radiance into two targets and end with `sss_pass.wgsl`).
     pub screen_space: bool,
@@ -69,7 +65,7 @@ pub struct Effects {
     pub lut: bool,
     /// The model filters the key light's shadow by its diffusion profile, reading the
     /// distance to the nearest shadow edge from the penumbra map (its frames with a shadow
-    /// map run the penumbra passes, `render/penumbra.rs`).
+    /// map run the penumbra passes, `render/passes/penumbra.rs`).
     pub penumbra: bool,
 }
 
@@ -78,8 +74,6 @@ impl Effects {
     pub const NONE: Effects = Effects {
         subsurface: false,
         translucency: false,
-        specular: false,
-        texture: false,
         screen_space: false,
         lut: false,
         penumbra: false,

@@ -74,18 +74,25 @@ impl Kernel {
         std::array::from_fn(|c| self.centre[c] + self.rings.iter().map(|r| r.0[c]).sum::<f64>())
     }
 
-    /// The uniform of `sss_pass.wgsl`: counts, the background colour, the centre, then
-    /// (mass, radius) per ring.
+    /// The uniform of `sss_pass.wgsl`: the counts, the background colour, the centre, then
+    /// (mass, outer radius) per ring.
     pub fn pack(&self, angles: u32, background: [f32; 4]) -> KernelUniform {
-        let f = |m: [f64; 3], w: f64| [m[0] as f32, m[1] as f32, m[2] as f32, w as f32];
-        let mut rings = [[0.0; 4]; MAX_RINGS];
+        let mass = |m: [f64; 3]| m.map(|x| x as f32);
+        let mut rings = [Ring::default(); MAX_RINGS];
         for (slot, (m, r)) in rings.iter_mut().zip(&self.rings) {
-            *slot = f(*m, *r);
+            *slot = Ring {
+                mass: mass(*m),
+                outer_mm: *r as f32,
+            };
         }
         KernelUniform {
-            counts: [self.rings.len() as f32, angles as f32, DEPTH_TOLERANCE, 0.0],
+            ring_count: self.rings.len().min(MAX_RINGS) as u32,
+            angles,
+            depth_tolerance: DEPTH_TOLERANCE,
+            _pad0: 0.0,
             background,
-            centre: f(self.centre, self.centre_radius),
+            centre_mass: mass(self.centre),
+            centre_radius_mm: self.centre_radius as f32,
             rings,
         }
     }
@@ -95,15 +102,33 @@ gpu_struct! {
     /// What `sss_pass.wgsl` reads at `@group(1) @binding(0)` (its `KernelUniform`, member for
     /// member).
     pub struct KernelUniform {
-        /// x: rings used, y: angles per ring, z: depth tolerance (relative pixel size).
-        pub counts: [f32; 4],
+        /// Rings used.
+        pub ring_count: u32,
+        /// Directions sampled per ring.
+        pub angles: u32,
+        /// How far a sample's pixel size may differ from the centre's (relative) and still
+        /// count as the same surface.
+        pub depth_tolerance: f32,
+        pub _pad0: f32,
         /// The clear colour as displayed (where nothing was drawn).
         pub background: [f32; 4],
-        /// rgb: mass of the inner disk; w: its radius (mm).
-        pub centre: [f32; 4],
-        /// rgb: mass of ring k; w: its outer radius (mm).
-        pub rings: [[f32; 4]; MAX_RINGS],
+        /// Mass of the inner disk (taken at the pixel) …
+        pub centre_mass: [f32; 3],
+        /// … and its radius (mm).
+        pub centre_radius_mm: f32,
+        /// Ring k starts where ring k − 1 ends (ring 0 at the centre's radius).
+        pub rings: [Ring; MAX_RINGS],
     }
+}
+
+/// One ring of the kernel as the subsurface pass reads it (`Ring` in `sss_pass.wgsl`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct Ring {
+    /// Its mass per channel.
+    pub mass: [f32; 3],
+    /// Its outer radius (mm).
+    pub outer_mm: f32,
 }
 
 model_uniform! {
@@ -126,6 +151,11 @@ model_uniform! {
         pub lift: [f32; 3],
         /// 1 for models with translucency (read by the f64 twin).
         pub translucent: f32,
+        /// The diffuse reflectance of the medium as the model renders it under uniform
+        /// (diffuse) light on a flat surface, ∫ R(μ) 2μ dμ ([`uniform_albedo`]): what ambient
+        /// light reflects with, and what a pigment's albedo is relative to.
+        pub uniform_albedo: [f32; 3],
+        pub _pad0: f32,
         /// q(μ_k) = R(μ_k)/R(1), μ_k = (k/6)² (rgb).
         pub oblique: [[f32; 4]; OBLIQUE_NODES],
         /// ln of the diffuse transmittance of a slab SLAB_FIRST_MM · 2^k thick (rgb).
@@ -164,20 +194,28 @@ impl Params {
             lut_r0_mm: LUT_R0_MM as f32,
             lift: f32x3(self.lift),
             translucent: f32::from(u8::from(self.slab.is_some())),
+            uniform_albedo: [0.0; 3],
+            _pad0: 0.0,
             oblique: self.oblique.map(row),
             slab: slab.map(|t| row(t.map(|v| v.max(SLAB_FLOOR).ln()))),
             shift: self.shift.map(row),
         }
     }
 
+    /// The packed uniform, with the medium's reflectance under uniform light as these
+    /// parameters render it ([`uniform_albedo`]).
     pub fn pack(&self) -> ModelParams {
-        ModelParams::from_uniform(&self.uniform())
+        let mut u = self.uniform();
+        let r = uniform_albedo(&ModelParams::from_uniform(&u));
+        u.uniform_albedo = [r.x as f32, r.y as f32, r.z as f32];
+        ModelParams::from_uniform(&u)
     }
 }
 
 /// The packed uniform as the shader reads it, in f64.
 struct Packed {
     albedo: DVec3,
+    uniform_albedo: DVec3,
     eta: f64,
     exit_norm: f64,
     translucent: bool,
@@ -195,6 +233,7 @@ fn unpack(p: &ModelParams) -> Packed {
     let u: &SubsurfaceUniform = p.uniform();
     Packed {
         albedo: rgb(u.albedo),
+        uniform_albedo: rgb(u.uniform_albedo),
         eta: u.eta.into(),
         exit_norm: u.exit_norm.into(),
         translucent: u.translucent > 0.5,
@@ -291,8 +330,38 @@ pub fn split(pm: &ModelParams, px: &Pixel) -> (DVec3, DVec3, f64) {
     } else {
         DVec3::ZERO
     };
-    let local = exit * (std::f64::consts::PI * px.ambient * p.albedo + translucency);
+    let local = exit * (std::f64::consts::PI * px.ambient * p.uniform_albedo + translucency);
     (local, spread, exit)
+}
+
+/// The diffuse reflectance of the medium as the spatial models render it on a flat surface
+/// under uniform (diffuse, cosine-weighted) light: ∫ R(μ) 2μ dμ, R(μ) the exitance per unit
+/// incident power of a distant light at incidence cosine μ, from the f64 twin of the shader
+/// ([`local`]; the exitance from the radiance toward the normal). A pigment's albedo A is
+/// relative to it: the shaders scale what leaves a texel by T² = A / this, so uniform light
+/// returns A exactly (pre- and post-scatter: T on the way in, T on the way out).
+pub fn uniform_albedo(pm: &ModelParams) -> DVec3 {
+    let p = unpack(pm);
+    let normal_exit = fresnel::transmittance_shader(p.eta, 1.0) * p.exit_norm;
+    if normal_exit <= 0.0 {
+        return DVec3::ZERO;
+    }
+    // μ = x², 2μ dμ = 4x³ dx; R(μ) = M(μ)/μ for a unit normal irradiance.
+    const STEPS: usize = 256;
+    let mut sum = DVec3::ZERO;
+    for k in 0..STEPS {
+        let x = (k as f64 + 0.5) / STEPS as f64;
+        let mu = x * x;
+        let mut px = Pixel::new(DVec3::new((1.0 - mu * mu).sqrt(), 0.0, mu), DVec3::Z);
+        px.ambient = DVec3::ZERO;
+        // Thick (no translucency), the light far (no lift) with unit normal irradiance.
+        px.thickness_m = 1.0;
+        px.light_dist_m = 1e3;
+        px.light = DVec3::splat(1e6);
+        let exitance = local(pm, &px) / normal_exit;
+        sum += exitance * (4.0 * x / STEPS as f64);
+    }
+    sum
 }
 
 /// f64 twin of `sss_local`: the pixel under uniform irradiance.
@@ -303,12 +372,13 @@ pub fn local(pm: &ModelParams, px: &Pixel) -> DVec3 {
 }
 
 /// What the spatial models' descriptors share (their uniform, the per-pixel part and its
-/// probed oblique table); each fills in the rest (`..subsurface::SPATIAL`).
+/// probed oblique table, and for the screen-space ones their whole WGSL module,
+/// `subsurface.wgsl`); each fills in the rest (`..subsurface::SPATIAL`).
 pub const SPATIAL: Descriptor = Descriptor {
     name: "",
     label: "",
     module: "subsurface",
-    wgsl: "",
+    wgsl: include_str!("../../../shaders/subsurface.wgsl"),
     variant: None,
     effects: Effects::NONE,
     uniform: SubsurfaceUniform::LAYOUT,
@@ -345,8 +415,9 @@ mod tests {
             assert_eq!(*r, w[1]);
         }
         let u = k.pack(8, [0.0; 4]);
-        assert_eq!(u.counts[0], 2.0);
-        assert_eq!(u.rings[1], [0.05, 0.05, 0.05, 2.0]);
-        assert_eq!(u.rings[2], [0.0; 4]);
+        assert_eq!(u.ring_count, 2);
+        let ring = |mass: [f32; 3], outer_mm| Ring { mass, outer_mm };
+        assert_eq!(u.rings[1], ring([0.05; 3], 2.0));
+        assert_eq!(u.rings[2], ring([0.0; 3], 0.0));
     }
 }

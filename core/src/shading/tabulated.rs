@@ -1,5 +1,6 @@
-//! Spatial model `tabulated` (WGSL: `shaders/tabulated.wgsl`): the material's diffusion
-//! profile as measured by the project's Monte Carlo for a normally incident pencil beam
+//! Spatial model `tabulated` (WGSL: `shaders/subsurface.wgsl`, shared by the screen-space
+//! models): the material's diffusion profile as measured by the project's Monte Carlo for a
+//! normally incident pencil beam
 //! ([`bake`]), spread over the screen by the subsurface pass with rings of exact mass; the
 //! oblique-incidence factor q(μ) and the translucency of thin parts from measured tables.
 //!
@@ -36,8 +37,6 @@ pub fn kernel(m: &Material) -> Kernel {
 pub const TABULATED: Descriptor = Descriptor {
     name: "tabulated",
     label: "Measured profile",
-    module: "tabulated",
-    wgsl: include_str!("../../../shaders/tabulated.wgsl"),
     variant: None,
     effects: Effects {
         subsurface: true,

@@ -62,9 +62,11 @@ model_uniform! {
         pub rho_s: f32,
         pub alpha_x: f32,
         pub alpha_y: f32,
+        /// The paper's sliders (§3.1): diffuse, ambient, specular.
+        pub slider_diffuse: f32,
+        pub slider_ambient: f32,
+        pub slider_specular: f32,
         pub _pad0: f32,
-        /// The paper's sliders: diffuse, ambient, specular.
-        pub sliders: [f32; 3],
         pub _pad1: f32,
     }
 }
@@ -107,7 +109,9 @@ impl Params {
             rho_s: l.rho_s as f32,
             alpha_x: l.alpha_x as f32,
             alpha_y: l.alpha_y as f32,
-            sliders: f32x3([s.diffuse, s.ambient, s.specular]),
+            slider_diffuse: s.diffuse as f32,
+            slider_ambient: s.ambient as f32,
+            slider_specular: s.specular as f32,
             ..bytemuck::Zeroable::zeroed()
         }
     }
@@ -209,8 +213,8 @@ pub fn shade(p: &ModelParams, printed: bool, px: &Pixel) -> DVec3 {
         DVec3::ONE
     };
     let kd = rgb(u.rho_d) * tex;
-    let sliders = rgb(u.sliders);
-    let ambient = px.ambient * kd * sliders[1];
+    let slider = |v: f32| f64::from(v);
+    let ambient = px.ambient * kd * slider(u.slider_ambient);
     let nl = px.n.dot(px.l);
     if nl <= 0.0 {
         return ambient;
@@ -219,7 +223,8 @@ pub fn shade(p: &ModelParams, printed: bool, px: &Pixel) -> DVec3 {
     ambient
         + px.irradiance()
             * nl
-            * (kd * sliders[0] / std::f64::consts::PI + DVec3::splat(spec * sliders[2]))
+            * (kd * slider(u.slider_diffuse) / std::f64::consts::PI
+                + DVec3::splat(spec * slider(u.slider_specular)))
 }
 
 /// f64 reference of the probed `ward_specular` for the packed uniform `p` (grey).
@@ -244,11 +249,8 @@ pub fn lobe_specular(px: &Pixel, lobe: &Lobe, printed: bool) -> f64 {
 
 const WGSL: &str = include_str!("../../../shaders/ward.wgsl");
 
-const EFFECTS: Effects = Effects {
-    specular: true,
-    texture: true,
-    ..Effects::NONE
-};
+/// Ward is a BRDF: none of the effects a pass or a table serves.
+const EFFECTS: Effects = Effects::NONE;
 
 /// The probed sub-function in WGSL: the specular lobe.
 const PROBE_WGSL: &str = "vec3<f32>(ward_specular(s, model.rho_s, model.alpha_x, model.alpha_y))";

@@ -313,7 +313,7 @@ impl<'g> Harness<'g> {
         // Identity view_proj, the ambient; the rest 0 (no shadow map: every point lit).
         let frame = FrameUniform {
             view_proj: glam::Mat4::IDENTITY.to_cols_array_2d(),
-            ambient: [ambient.x as f32, ambient.y as f32, ambient.z as f32, 0.0],
+            ambient: [ambient.x as f32, ambient.y as f32, ambient.z as f32],
             ..bytemuck::Zeroable::zeroed()
         };
         let frame_buf = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {

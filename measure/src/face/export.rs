@@ -197,7 +197,7 @@ pub struct MediumJson {
 impl MediumJson {
     pub fn from_material(m: &Material) -> Self {
         Self {
-            name: m.name.into(),
+            name: m.name.to_string(),
             sigma_a_per_mm: m.sigma_a,
             sigma_s_per_mm: m.sigma_s_prime.map(|s| s / (1.0 - m.g)),
             g: m.g,

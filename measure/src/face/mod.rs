@@ -1,11 +1,17 @@
-//! The scanned head against an outside path tracer (Mitsuba 3, `tools/mitsuba/`): the scene
-//! exported as the path tracer reads it, the cached references, and the image-space score.
+//! The scanned head's ground truth and its score: the project's own Monte Carlo on the closed
+//! head mesh, cached, and the image-space score of a rendered face against it; the scene
+//! exported for an outside path tracer (Mitsuba 3, `tools/mitsuba/`) to cross-check it.
 //!
-//! - [`export`]: a welded PLY in metres, JSON with the camera, light and the material's
-//!   coefficients.
-//! - [`cache`]: the cached references, checked against the scene files they were made from.
-//! - [`score`]: mean |ln(model/reference)| over the skin pixels above the reference's noise.
+//! - [`export`]: the welded, closed head (PLY in metres) and JSON with the camera, lights and
+//!   the material's coefficients.
+//! - [`truth`]: the truth under any point light: linear radiance and its standard error in the
+//!   face scenes' camera.
+//! - [`truth_cache`]: the cached truths (`tools/reference/face/`), checked against the scene.
+//! - [`score`]: mean |ln(model/truth)| over the head's blocks where the truth is precise.
+//! - [`regions`]: where the error sits (eye sockets, nose, lips, ear, neck), per channel.
 
-pub mod cache;
 pub mod export;
+pub mod regions;
 pub mod score;
+pub mod truth;
+pub mod truth_cache;

@@ -1,35 +1,40 @@
-//! The image-space score of a rendered face against the path-traced reference.
+//! The image-space score of a rendered face against the face truth (`truth.rs`).
 //!
-//! The reference is two renders with independent seeds. Both it and the model are averaged
-//! over blocks of [`BLOCK`]² pixels (a path-traced pixel is far noisier than the block), and
-//! only blocks the head covers entirely are scored (the reference's alpha: silhouettes, where
-//! a box filter and MSAA differ, are left out). The two seeds' mean is the reference; half
-//! their difference estimates its standard error, as a relative error averaged (RMS) over the
-//! 3×3 neighbouring blocks so that one block's chance agreement does not make it noiseless. A
-//! block's channel counts where the reference stands [`MIN_SNR`] standard errors above zero.
-//! The score is the mean over those of |ln(model/reference)|, each capped at [`CAP`] (a black
-//! image scores the cap, a doubled one ln 2).
+//! Both the truth and the model are averaged over blocks of [`BLOCK`]² pixels, and only blocks
+//! the head covers entirely are scored (silhouettes, where a box filter and MSAA differ, are
+//! left out). The truth carries its standard error per pixel (from its photon batches); a
+//! block's is the root sum of its pixels' squares over [`BLOCK`]⁴ (pixels are independent but
+//! for the rare photon that leaves twice). A block's channel is scored where the truth's
+//! relative standard error is at most [`MAX_REL_SE`]: a model equal to the truth then scores at
+//! most about 0.8 × 0.02 by the truth's noise. The score is the mean over those of
+//! |ln(model/truth)|, each capped at [`CAP`] (a black image scores the cap, a doubled one
+//! ln 2).
 
 use dermis_core::face::pfm::FloatImage;
 
 /// Pixels per side of a scored block.
 pub const BLOCK: u32 = 4;
-/// Reference / standard error above which a block's channel is scored.
-pub const MIN_SNR: f32 = 5.0;
+/// Largest relative standard error of the truth at which a block's channel is scored.
+pub const MAX_REL_SE: f32 = 0.02;
+/// The looser bar of the second score and of the diagnosis: it reaches the dimmer blocks (the
+/// terminator, the eye sockets, the back light's rim) at a noise floor of about 0.8 × 0.03.
+pub const WIDE_REL_SE: f32 = 0.05;
 /// The most one block's channel can add (a zero or negative model value).
 pub const CAP: f64 = 10.0;
 
 /// A cached reference ready for scoring.
 #[derive(Clone, Debug)]
 pub struct Reference {
-    /// The seeds' mean at full resolution.
+    /// The truth at full resolution.
     pub full: FloatImage,
-    /// Block means of the seeds' mean.
+    /// Its block means.
     pub mean: FloatImage,
     /// Standard error of `mean` per block and channel.
     pub noise: Vec<[f32; 3]>,
     /// Scored block channels.
     pub mask: Vec<[bool; 3]>,
+    /// Blocks the head covers wholly.
+    covered: Vec<bool>,
     block: u32,
 }
 
@@ -71,85 +76,85 @@ pub fn block_means(img: &FloatImage, block: u32) -> FloatImage {
 }
 
 impl Reference {
-    /// From two independent renders and the head's coverage (alpha, 0..1), in blocks of
-    /// `block`² pixels.
-    pub fn from_seeds(
-        a: &FloatImage,
-        b: &FloatImage,
+    /// From the truth's radiance, its standard error per pixel and the head's coverage (alpha,
+    /// 0..1), in blocks of `block`² pixels.
+    pub fn from_truth(
+        mean: &FloatImage,
+        std_err: &FloatImage,
         alpha: &[f32],
         block: u32,
     ) -> Result<Self, String> {
-        let (w, h) = (a.width, a.height);
-        if (b.width, b.height) != (w, h) || alpha.len() != (w * h) as usize {
-            return Err("reference seeds and coverage differ in size".into());
+        let (w, h) = (mean.width, mean.height);
+        if (std_err.width, std_err.height) != (w, h) || alpha.len() != (w * h) as usize {
+            return Err("the truth, its standard error and the coverage differ in size".into());
         }
         if block == 0 || w < block || h < block {
             return Err(format!("block {block} does not fit a {w}x{h} image"));
         }
-        let full = FloatImage::new(
+        let cov = FloatImage::new(w, h, alpha.iter().map(|&v| [v; 3]).collect())?;
+        let var = FloatImage::new(
             w,
             h,
-            a.pixels
-                .iter()
-                .zip(&b.pixels)
-                .map(|(p, q)| std::array::from_fn(|c| 0.5 * (p[c] + q[c])))
-                .collect(),
+            std_err.pixels.iter().map(|p| p.map(|s| s * s)).collect(),
         )?;
-        let cov = FloatImage::new(w, h, alpha.iter().map(|&v| [v; 3]).collect())?;
-        let (ba, bb, bc) = (
-            block_means(a, block),
-            block_means(b, block),
+        let (bm, bv, bc) = (
+            block_means(mean, block),
+            block_means(&var, block),
             block_means(&cov, block),
         );
-        let mean = block_means(&full, block);
-        let (bw, bh) = (mean.width as i64, mean.height as i64);
-        let covered = |i: usize| bc.pixels[i][0] >= 0.999;
-        // Relative half-difference per block channel (0 where the mean is not positive).
-        let rel: Vec<[f64; 3]> = (0..mean.pixels.len())
-            .map(|i| {
-                std::array::from_fn(|c| {
-                    let (x, y) = (ba.pixels[i][c] as f64, bb.pixels[i][c] as f64);
-                    if x + y > 0.0 {
-                        (x - y) / (x + y)
-                    } else {
-                        0.0
-                    }
-                })
+        let n = (block * block) as f32;
+        let noise: Vec<[f32; 3]> = bv
+            .pixels
+            .iter()
+            .map(|v| v.map(|v| (v / n).sqrt()))
+            .collect();
+        let covered = bc.pixels.iter().map(|c| c[0] >= 0.999).collect();
+        Ok(Self {
+            full: mean.clone(),
+            mean: bm,
+            noise,
+            mask: Vec::new(),
+            covered,
+            block,
+        }
+        .with_max_rel_se(MAX_REL_SE))
+    }
+
+    /// The same truth scored where its relative standard error is at most `limit`.
+    pub fn with_max_rel_se(mut self, limit: f32) -> Self {
+        self.mask = self
+            .mean
+            .pixels
+            .iter()
+            .zip(&self.noise)
+            .zip(&self.covered)
+            .map(|((m, s), c)| std::array::from_fn(|k| *c && m[k] > 0.0 && s[k] <= limit * m[k]))
+            .collect();
+        self
+    }
+
+    /// Relative standard errors of the scored block channels, ascending.
+    pub fn relative_errors(&self) -> Vec<f64> {
+        let mut v: Vec<f64> = self
+            .mean
+            .pixels
+            .iter()
+            .zip(&self.noise)
+            .zip(&self.mask)
+            .flat_map(|((m, s), k)| {
+                (0..3)
+                    .filter(|&c| k[c])
+                    .map(|c| (s[c] / m[c]) as f64)
+                    .collect::<Vec<_>>()
             })
             .collect();
-        let mut noise = vec![[0f32; 3]; mean.pixels.len()];
-        let mut mask = vec![[false; 3]; mean.pixels.len()];
-        for y in 0..bh {
-            for x in 0..bw {
-                let i = (y * bw + x) as usize;
-                let mut sum = [0f64; 3];
-                let mut n = 0usize;
-                for (dx, dy) in (-1..=1).flat_map(|dy| (-1..=1).map(move |dx| (dx, dy))) {
-                    let (u, v) = (x + dx, y + dy);
-                    if u < 0 || v < 0 || u >= bw || v >= bh || !covered((v * bw + u) as usize) {
-                        continue;
-                    }
-                    let j = (v * bw + u) as usize;
-                    for c in 0..3 {
-                        sum[c] += rel[j][c] * rel[j][c];
-                    }
-                    n += 1;
-                }
-                for c in 0..3 {
-                    let m = mean.pixels[i][c];
-                    let se = (sum[c] / n.max(1) as f64).sqrt() as f32 * m.abs();
-                    noise[i][c] = se;
-                    mask[i][c] = covered(i) && m > 0.0 && m > MIN_SNR * se;
-                }
-            }
-        }
-        Ok(Self {
-            full,
-            mean,
-            noise,
-            mask,
-            block,
-        })
+        v.sort_by(f64::total_cmp);
+        v
+    }
+
+    /// Scored block channels.
+    pub fn scored(&self) -> usize {
+        self.mask.iter().flatten().filter(|k| **k).count()
     }
 
     /// Mean relative standard error over the scored block channels.
@@ -235,34 +240,32 @@ pub fn tone_map(image: &FloatImage, exposure: f32) -> Vec<u8> {
 mod tests {
     use super::*;
 
-    /// A smooth, noisy-ish reference: a gradient with a small ±2 % seed difference.
+    /// A smooth reference, a gradient, with a 1 % relative standard error per pixel.
     fn reference() -> (Reference, FloatImage) {
         let (w, h) = (16u32, 12u32);
-        let px = |s: f32| {
-            (0..w * h)
-                .map(|i| {
-                    let v = 0.1 + (i % w) as f32 * 0.01;
-                    let e = if (i / w + i % w) % 2 == 0 { s } else { -s };
-                    [v * (1.0 + e), 0.5 * v * (1.0 + e), 0.2 * v * (1.0 + e)]
-                })
-                .collect()
-        };
-        let a = FloatImage::new(w, h, px(0.02)).unwrap();
-        let b = FloatImage::new(w, h, px(-0.02)).unwrap();
+        let mean: Vec<[f32; 3]> = (0..w * h)
+            .map(|i| {
+                let v = 0.1 + (i % w) as f32 * 0.01;
+                [v, 0.5 * v, 0.2 * v]
+            })
+            .collect();
+        let se = mean.iter().map(|p| p.map(|c| 0.01 * c)).collect();
+        let a = FloatImage::new(w, h, mean).unwrap();
+        let s = FloatImage::new(w, h, se).unwrap();
         let alpha = vec![1.0; (w * h) as usize];
-        let r = Reference::from_seeds(&a, &b, &alpha, 1).unwrap();
-        let mean = r.full.clone();
-        (r, mean)
+        let r = Reference::from_truth(&a, &s, &alpha, 1).unwrap();
+        (r, a)
     }
 
     #[test]
     fn black_scores_the_cap_doubled_scores_ln2_itself_zero() {
         let (r, mean) = reference();
         assert!(
-            (r.relative_noise() - 0.02).abs() < 2e-3,
+            (r.relative_noise() - 0.01).abs() < 1e-4,
             "{}",
             r.relative_noise()
         );
+        assert_eq!(r.scored(), 3 * 16 * 12);
         let own = r.score(&mean).unwrap();
         assert!(own.mean_abs_ln < 1e-9 && own.count > 0);
         let doubled = FloatImage {
@@ -281,18 +284,20 @@ mod tests {
     }
 
     #[test]
-    fn partly_covered_blocks_and_noise_are_left_out() {
+    fn partly_covered_blocks_and_noisy_blocks_are_left_out() {
         let (w, h) = (8u32, 8u32);
-        let a = FloatImage::new(w, h, vec![[1.0, 1.0, 0.01]; 64]).unwrap();
-        let b = FloatImage::new(w, h, vec![[1.0, 1.0, -0.01]; 64]).unwrap();
+        // Red: 1 ± 0.02 per pixel, 0.01 per 2×2 block: scored; green: 1 ± 0.06 per pixel,
+        // 0.03 per block: too noisy; blue: 0.
+        let a = FloatImage::new(w, h, vec![[1.0, 1.0, 0.0]; 64]).unwrap();
+        let s = FloatImage::new(w, h, vec![[0.02, 0.06, 0.01]; 64]).unwrap();
         // Covered on the left 3 columns: 2×2 blocks, only the first block column is whole.
         let alpha: Vec<f32> = (0..64).map(|i| if i % 8 < 3 { 1.0 } else { 0.0 }).collect();
-        let r = Reference::from_seeds(&a, &b, &alpha, 2).unwrap();
+        let r = Reference::from_truth(&a, &s, &alpha, 2).unwrap();
         assert_eq!((r.mean.width, r.mean.height), (4, 4));
         for (i, k) in r.mask.iter().enumerate() {
-            // Blue: mean 0 with noise 0.01, never scored; red: the whole blocks only.
-            assert!(!k[2]);
+            assert!(!k[1] && !k[2]);
             assert_eq!(k[0], i % 4 == 0, "{i}");
+            assert!((r.noise[i][0] - 0.01).abs() < 1e-6);
         }
         // A model scored against it: black is the cap, the reference itself 0.
         let black = FloatImage::new(w, h, vec![[0.0; 3]; 64]).unwrap();

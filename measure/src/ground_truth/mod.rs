@@ -195,7 +195,7 @@ pub fn acceptance_material(m: &Material) -> Material {
     Material {
         eta: ETA,
         g: 0.0,
-        ..*m
+        ..m.clone()
     }
 }
 

@@ -3,7 +3,7 @@
 use super::*;
 
 fn load_committed(m: &Material) -> ReferenceSet {
-    let path = file_for(&source_dir(), m.name);
+    let path = file_for(&source_dir(), &m.name);
     ReferenceSet::load(&path).unwrap_or_else(|e| panic!("{e}"))
 }
 
@@ -53,7 +53,7 @@ fn committed_reference_files_are_complete() {
 #[test]
 fn committed_reference_files_round_trip() {
     for m in acceptance_materials() {
-        let path = file_for(&source_dir(), m.name);
+        let path = file_for(&source_dir(), &m.name);
         let text = std::fs::read_to_string(&path).unwrap();
         let set = load_committed(&m);
         // Saving what was loaded reproduces the file byte for byte (already rounded).

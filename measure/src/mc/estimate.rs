@@ -32,7 +32,7 @@ impl Estimate {
 /// Sum and sum of squares of per-photon contributions (a photon that does not contribute
 /// adds nothing; zeros are implied by the photon count).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub(crate) struct Acc {
+pub struct Acc {
     pub s1: f64,
     pub s2: f64,
 }
@@ -125,6 +125,44 @@ impl Tally {
         for (a, b) in self.inc_bins.iter_mut().zip(&o.inc_bins) {
             a.merge(b);
         }
+    }
+}
+
+/// Runs `nbatches` batches over `threads` scoped threads, taking them dynamically, and hands
+/// each result to `fold` in batch order as soon as every earlier one has been folded (a small
+/// reorder buffer), so what `fold` accumulates is bit-identical for any thread count and no
+/// more than a few batch results are held at once.
+pub(crate) fn run_batches_ordered<T, R, F>(nbatches: usize, threads: usize, run: R, fold: F)
+where
+    T: Send,
+    R: Fn(usize) -> T + Sync,
+    F: FnMut(usize, T) + Send,
+{
+    let threads = threads.max(1).min(nbatches.max(1));
+    let state = std::sync::Mutex::new((0usize, std::collections::BTreeMap::new(), fold));
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    let work = || loop {
+        let b = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        if b >= nbatches {
+            break;
+        }
+        let t = run(b);
+        let mut guard = state.lock().unwrap_or_else(|e| e.into_inner());
+        let (ref mut due, ref mut pending, ref mut fold) = *guard;
+        pending.insert(b, t);
+        while let Some(t) = pending.remove(due) {
+            fold(*due, t);
+            *due += 1;
+        }
+    };
+    if threads == 1 {
+        work();
+    } else {
+        std::thread::scope(|s| {
+            for _ in 0..threads {
+                s.spawn(work);
+            }
+        });
     }
 }
 

@@ -67,6 +67,8 @@
 pub mod edge;
 pub mod estimate;
 pub mod fresnel;
+pub mod mesh;
+pub mod mesh_walk;
 pub mod phase;
 pub mod rng;
 pub mod sphere;
@@ -474,3 +476,5 @@ pub fn point_light_irradiance_bins(h: f64, edges: &[f64]) -> Vec<f64> {
         })
         .collect()
 }
+#[cfg(test)]
+mod mesh_tests;

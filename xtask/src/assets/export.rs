@@ -4,6 +4,7 @@ use super::clips::Clip;
 use super::glb_writer::{GlbBuilder, ARRAY_BUFFER};
 use super::humanoid::Character;
 use super::mesh::Mesh;
+use super::outfit::{self, Mat};
 use super::skeleton::{inverse_bind, local_translation};
 use glam::Vec3;
 use serde_json::{json, Value};
@@ -13,10 +14,6 @@ const LINEAR: u32 = 9729;
 const LINEAR_MIPMAP_LINEAR: u32 = 9987;
 const REPEAT: u32 = 10497;
 const CLAMP_TO_EDGE: u32 = 33071;
-
-/// The material's `extras` entry declaring that the base-colour texture's alpha is the skin
-/// mask (read by `dermis-core`'s loader; the material stays opaque, so viewers ignore alpha).
-pub const SKIN_MASK_EXTRAS: (&str, &str) = ("dermisSkinMask", "baseColorAlpha");
 
 fn flat3(v: &[Vec3]) -> Vec<f32> {
     v.iter().flat_map(|p| p.to_array()).collect()
@@ -61,13 +58,21 @@ fn merge(doc: &mut Value, extra: Value) {
     }
 }
 
-pub fn character_glb(c: &Character, clips: &[Clip], png: &[u8]) -> Vec<u8> {
+/// The skinned character: one primitive per material (`outfit`), every material's base
+/// colour from the one atlas `png`, the skin's multi-scatter colour `skin_factor` × the atlas.
+pub fn character_glb(c: &Character, clips: &[Clip], png: &[u8], skin_factor: [f64; 3]) -> Vec<u8> {
     let mut b = GlbBuilder::new();
-    let (mut attrs, idx) = mesh_attributes(&mut b, &c.mesh);
-    attrs["JOINTS_0"] = json!(b.joints_u8(&c.joints));
-    let w: Vec<f32> = c.weights.iter().flatten().copied().collect();
-    attrs["WEIGHTS_0"] = json!(b.floats(&w, 4, "VEC4", Some(ARRAY_BUFFER), false));
-    attrs["_THICKNESS"] = json!(b.floats(&c.thickness, 1, "SCALAR", Some(ARRAY_BUFFER), true));
+    let mut primitives = Vec::new();
+    for p in c.primitives() {
+        let (mut attrs, idx) = mesh_attributes(&mut b, &p.mesh);
+        attrs["JOINTS_0"] = json!(b.joints_u8(&p.joints));
+        let w: Vec<f32> = p.weights.iter().flatten().copied().collect();
+        attrs["WEIGHTS_0"] = json!(b.floats(&w, 4, "VEC4", Some(ARRAY_BUFFER), false));
+        attrs["_THICKNESS"] = json!(b.floats(&p.thickness, 1, "SCALAR", Some(ARRAY_BUFFER), true));
+        let material = Mat::ALL.iter().position(|&m| m == p.material).unwrap_or(0);
+        primitives
+            .push(json!({ "attributes": attrs, "indices": idx, "material": material, "mode": 4 }));
+    }
     let sk = &c.skeleton;
     let ibm: Vec<f32> = (0..sk.len())
         .flat_map(|i| inverse_bind(sk, i).to_cols_array())
@@ -114,14 +119,20 @@ pub fn character_glb(c: &Character, clips: &[Clip], png: &[u8]) -> Vec<u8> {
         "scene": 0,
         "scenes": [{ "name": "character", "nodes": [0, 1] }],
         "nodes": nodes,
-        "meshes": [{ "name": "body", "primitives": [{ "attributes": attrs, "indices": idx, "material": 0, "mode": 4 }] }],
+        "meshes": [{ "name": "body", "primitives": primitives }],
         "skins": [{ "name": "skeleton", "inverseBindMatrices": ibm, "joints": (1..=sk.len()).collect::<Vec<_>>(), "skeleton": 1 }],
         "animations": animations,
     });
-    let mut material = material_json("skin", image_view, 0.5, CLAMP_TO_EDGE);
-    let (key, value) = SKIN_MASK_EXTRAS;
-    material["materials"][0]["extras"] = json!({ key: value });
-    merge(&mut doc, material);
+    doc["materials"] = Value::Array(
+        Mat::ALL
+            .iter()
+            .map(|&m| outfit::material_json(m, 0, skin_factor))
+            .collect(),
+    );
+    doc["extensionsUsed"] = json!(outfit::EXTENSIONS_USED);
+    doc["textures"] = json!([{ "sampler": 0, "source": 0 }]);
+    doc["samplers"] = json!([{ "magFilter": LINEAR, "minFilter": LINEAR_MIPMAP_LINEAR, "wrapS": CLAMP_TO_EDGE, "wrapT": CLAMP_TO_EDGE }]);
+    doc["images"] = json!([{ "bufferView": image_view, "mimeType": "image/png", "name": "character_base_color" }]);
     b.finish(doc)
 }
 

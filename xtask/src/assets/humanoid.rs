@@ -1,7 +1,9 @@
-//! The stylised humanoid: lofted body parts that overlap into one figure, smooth skin weights
-//! and per-vertex thickness.
+//! The stylised humanoid: lofted body parts that overlap into one figure, cut along its
+//! material boundaries (`outfit`), smooth skin weights and per-vertex thickness.
 
+use super::cut::cut;
 use super::mesh::Mesh;
+use super::outfit::{self, Mat};
 use super::shapes::Tube;
 use super::skeleton::*;
 use super::texture::atlas;
@@ -19,6 +21,8 @@ pub struct Character {
     pub weights: Vec<[f32; 4]>,
     /// Local thickness through each vertex along its inward normal (metres).
     pub thickness: Vec<f32>,
+    /// The material of each triangle.
+    pub materials: Vec<Mat>,
     pub skeleton: Vec<Joint>,
 }
 
@@ -345,14 +349,66 @@ fn skin_vertex(p: Vec3, bones: &[(usize, f32)], sk: &[Joint]) -> ([u8; 4], [f32;
     (j, w)
 }
 
+/// The eyeballs: flattened ellipsoids looking along +z, set into the head so 3 mm show.
+fn eyes(head: &Mesh) -> Vec<Part> {
+    let (rx, ry, rz) = (0.014, 0.009, 0.010);
+    let protrude = 0.003;
+    [1.0f32, -1.0]
+        .into_iter()
+        .map(|s| {
+            let (x, y) = (0.032 * s, 1.624);
+            let from = 0.3;
+            let surface = head
+                .ray_hit(Vec3::new(x, y, from), -Vec3::Z, 0.0)
+                .map_or(0.085, |d| from - d);
+            let c = Vec3::new(x, y, surface + protrude - rz);
+            let r = [rx, ry, 0.0];
+            Part {
+                tube: tube(
+                    c - Vec3::Z * rz,
+                    c + Vec3::Z * rz,
+                    Vec3::X,
+                    &[[0.0, r[0], r[1], r[2]], [1.0, r[0], r[1], r[2]]],
+                    Vec3::X,
+                    [0.45, 0.45],
+                    [16, 1, 6],
+                    atlas::EYE,
+                ),
+                bones: vec![(HEAD, 1.0)],
+            }
+        })
+        .collect()
+}
+
 pub fn build() -> Character {
     let skeleton = joints();
     let mut mesh = Mesh::default();
     let mut joints4 = Vec::new();
     let mut weights = Vec::new();
     let mut thickness = Vec::new();
-    for part in parts() {
-        let (m, diam) = part.tube.build_with_diameters();
+    let mut materials = Vec::new();
+    let mut parts = parts();
+    let head = parts
+        .iter()
+        .find(|p| p.tube.uv_rect == atlas::HEAD)
+        .map(|p| p.tube.build_with_diameters().0)
+        .unwrap_or_default();
+    parts.extend(eyes(&head));
+    for part in parts {
+        let rect = part.tube.uv_rect;
+        let (mut m, mut diam) = part.tube.build_with_diameters();
+        for field in outfit::boundaries(rect) {
+            let (cut_mesh, origins) = cut(&m, field);
+            for (a, b, t) in origins {
+                let (da, db) = (diam[a as usize], diam[b as usize]);
+                diam.push(da + (db - da) * t);
+            }
+            m = cut_mesh;
+        }
+        for t in m.indices.chunks(3) {
+            let tri = [0, 1, 2].map(|k| m.positions[t[k] as usize]);
+            materials.push(outfit::triangle_material(tri, rect));
+        }
         for ((p, n), diam) in m.positions.iter().zip(&m.normals).zip(diam) {
             let (j, w) = skin_vertex(*p, &part.bones, &skeleton);
             joints4.push(j);
@@ -373,7 +429,60 @@ pub fn build() -> Character {
         joints: joints4,
         weights,
         thickness,
+        materials,
         skeleton,
+    }
+}
+
+/// One primitive of the character: the triangles of one material, with their own vertices.
+pub struct Primitive {
+    pub material: Mat,
+    pub mesh: Mesh,
+    pub joints: Vec<[u8; 4]>,
+    pub weights: Vec<[f32; 4]>,
+    pub thickness: Vec<f32>,
+}
+
+impl Character {
+    /// One primitive per material present, in [`Mat::ALL`] order (vertices in first-use order).
+    pub fn primitives(&self) -> Vec<Primitive> {
+        let mut out = Vec::new();
+        for mat in Mat::ALL {
+            let mut remap = vec![u32::MAX; self.mesh.vertex_count()];
+            let mut p = Primitive {
+                material: mat,
+                mesh: Mesh::default(),
+                joints: Vec::new(),
+                weights: Vec::new(),
+                thickness: Vec::new(),
+            };
+            let m = &self.mesh;
+            for (t, _) in m
+                .indices
+                .chunks(3)
+                .zip(&self.materials)
+                .filter(|(_, &x)| x == mat)
+            {
+                for &i in t {
+                    let i = i as usize;
+                    if remap[i] == u32::MAX {
+                        remap[i] = p.mesh.positions.len() as u32;
+                        p.mesh.positions.push(m.positions[i]);
+                        p.mesh.normals.push(m.normals[i]);
+                        p.mesh.uvs.push(m.uvs[i]);
+                        p.mesh.tangents.push(m.tangents[i]);
+                        p.joints.push(self.joints[i]);
+                        p.weights.push(self.weights[i]);
+                        p.thickness.push(self.thickness[i]);
+                    }
+                    p.mesh.indices.push(remap[i]);
+                }
+            }
+            if !p.mesh.indices.is_empty() {
+                out.push(p);
+            }
+        }
+        out
     }
 }
 
@@ -393,5 +502,33 @@ mod tests {
         let thin = c.thickness.iter().cloned().fold(f32::INFINITY, f32::min);
         let thick = c.thickness.iter().cloned().fold(0.0, f32::max);
         assert!(thin < 0.013 && thick > 0.2, "{thin} {thick}");
+    }
+
+    #[test]
+    fn every_material_is_a_primitive_of_its_own() {
+        let c = build();
+        let prims = c.primitives();
+        let mats: Vec<Mat> = prims.iter().map(|p| p.material).collect();
+        assert_eq!(mats, Mat::ALL);
+        let tris: usize = prims.iter().map(|p| p.mesh.triangle_count()).sum();
+        assert_eq!(tris, c.mesh.triangle_count());
+        for p in &prims {
+            let n = p.mesh.vertex_count();
+            assert!(p.mesh.indices.iter().all(|&i| (i as usize) < n));
+            assert_eq!(
+                (p.joints.len(), p.weights.len(), p.thickness.len()),
+                (n, n, n)
+            );
+        }
+        // Skin is most of the figure; the eyes are two small eyeballs.
+        let count = |m: Mat| {
+            prims
+                .iter()
+                .find(|p| p.material == m)
+                .unwrap()
+                .mesh
+                .triangle_count()
+        };
+        assert!(count(Mat::Skin) > count(Mat::TankTop) && count(Mat::Eyes) < 1000);
     }
 }

@@ -1,18 +1,21 @@
 //! `cargo xtask assets`: regenerates the project's own glTF assets, byte-for-byte reproducibly.
 //!
-//! * `assets/character.glb`: skinned humanoid with `_THICKNESS`, base-colour atlas (alpha: the
-//!   skin mask) and the `idle`, `run`, `jump` clips.
+//! * `assets/character.glb`: skinned humanoid with `_THICKNESS`, one primitive per material
+//!   (skin declared by `KHR_materials_volume_scatter` with skin1's optics, tank top, shorts,
+//!   hair, eyes: `outfit`), one base-colour atlas and the `idle`, `run`, `jump` clips.
 //! * `assets/props/*.glb`: static props for the runner game.
 //! * `<model>.textures/*.ktx2` (and the scanned head's `head/<map>.textures/`): the textures'
 //!   GPU block encodings (`crate::textures`).
 
 mod clips;
+mod cut;
 mod detmath;
 mod export;
 mod glb_writer;
 mod humanoid;
 mod mesh;
 mod noise;
+mod outfit;
 mod props;
 mod shapes;
 mod skeleton;
@@ -20,11 +23,13 @@ mod texture;
 
 use std::path::{Path, PathBuf};
 
+use outfit::Mat;
+
 /// Every generated file: (path relative to the output root, bytes, one-line summary).
 pub fn generate() -> Vec<(String, Vec<u8>, String)> {
     let character = humanoid::build();
-    let rgba = texture::bake(&character.mesh);
-    let png = texture::encode_png_rgba(&rgba, texture::SIZE, texture::SIZE);
+    let rgba = texture::bake(&character.mesh, &character.materials);
+    let png = texture::encode_png(&rgba, texture::SIZE, texture::SIZE);
     let clips = clips::clips();
     let (lo, hi) = character.mesh.bounds();
     let thick = character
@@ -56,9 +61,27 @@ pub fn generate() -> Vec<(String, Vec<u8>, String)> {
         texture::SIZE,
         clip_info.join(", ")
     );
+    // Two passes: the skin's multi-scatter factor needs the atlas mean over the skin's texels
+    // as the engine measures it, on the file the engine loads.
+    let first = export::character_glb(&character, &clips, &png, [1.0; 3]);
+    let no_files = |uri: &str| -> Result<Vec<u8>, String> { Err(format!("no file {uri}")) };
+    let model = dermis_core::asset::load_gltf_slice(&first, "character.glb", &no_files)
+        .expect("the generated character loads");
+    let skin = Mat::ALL.iter().position(|&m| m == Mat::Skin).unwrap_or(0);
+    let texture = model.materials[skin]
+        .volume_scatter
+        .and_then(|s| s.multiscatter_texture)
+        .expect("the skin's multi-scatter texture");
+    let mean = dermis_core::asset::skin::texture_mean(&model, skin, texture)
+        .expect("the atlas is in the file");
+    let factor = outfit::skin_factor(mean);
+    let summary = format!(
+        "{summary}, skin atlas mean (linear) {:.3?}, multi-scatter factor {:.4?}",
+        mean, factor
+    );
     let mut out = vec![(
         "character.glb".to_string(),
-        export::character_glb(&character, &clips, &png),
+        export::character_glb(&character, &clips, &png, factor),
         summary,
     )];
     for p in props::props() {

@@ -1,11 +1,11 @@
 //! The character's base-colour texture: painted in 3D (bind-pose positions) and baked into the
-//! UV atlas by rasterising the mesh in texture space. Its alpha channel is the skin mask (255:
-//! skin, shaded by the subsurface models; 0: cloth, hair, eyes, shaded as cloth); the material
-//! declares it (`export::SKIN_MASK_EXTRAS`) and is opaque, so viewers ignore the alpha.
+//! UV atlas by rasterising the mesh in texture space. One atlas serves every material (skin,
+//! tank top, shorts, hair, eyes: `outfit`); each paints its own parts.
 
 use super::mesh::Mesh;
 use super::noise::fbm3;
-use glam::{Vec2, Vec3, Vec4};
+use super::outfit::Mat;
+use glam::{Vec2, Vec3};
 
 pub const SIZE: u32 = 1024;
 
@@ -22,13 +22,14 @@ pub mod atlas {
     pub const FINGER: [f32; 4] = [0.75, 0.5, 0.125, 0.125];
     pub const EAR: [f32; 4] = [0.875, 0.5, 0.125, 0.125];
     pub const NOSE: [f32; 4] = [0.375, 0.625, 0.125, 0.125];
+    pub const EYE: [f32; 4] = [0.5, 0.625, 0.125, 0.125];
 }
 
 fn in_rect(uv: Vec2, r: [f32; 4]) -> bool {
     uv.x >= r[0] && uv.x <= r[0] + r[2] && uv.y >= r[1] && uv.y <= r[1] + r[3]
 }
 
-const SKIN: Vec3 = Vec3::new(0.86, 0.64, 0.52);
+const SKIN: Vec3 = Vec3::new(0.86, 0.67, 0.54);
 const FLUSH: Vec3 = Vec3::new(0.82, 0.47, 0.43);
 const LIPS: Vec3 = Vec3::new(0.70, 0.36, 0.35);
 const HAIR: Vec3 = Vec3::new(0.17, 0.10, 0.07);
@@ -45,15 +46,24 @@ fn blob(p: Vec3, c: Vec3, r: Vec3) -> f32 {
     t * t * (3.0 - 2.0 * t)
 }
 
-/// Colour and skin coverage (1: skin) at bind-pose position `p` with normal `n` on the part
-/// owning atlas rect `rect`.
-fn paint(p: Vec3, n: Vec3, rect: [f32; 4]) -> (Vec3, f32) {
+/// Colour at bind-pose position `p` with normal `n` on the part owning atlas rect `rect`, in a
+/// triangle of material `mat`.
+fn paint(p: Vec3, n: Vec3, rect: [f32; 4], mat: Mat) -> Vec3 {
+    if rect == atlas::EYE {
+        // The eyeball looks along +z: pupil, iris and sclera by the normal's angle.
+        return if n.z > 0.985 {
+            Vec3::splat(0.04)
+        } else if n.z > 0.93 {
+            Vec3::new(0.28, 0.19, 0.12)
+        } else {
+            Vec3::new(0.93, 0.91, 0.88)
+        };
+    }
     // Mirror-symmetric coordinates (limbs share atlas space between sides).
     let q = Vec3::new(p.x.abs(), p.y, p.z);
     let mottling = fbm3(q * 40.0, 3, 7) - 0.5;
     let broad = fbm3(q * 6.0, 2, 11) - 0.5;
     let mut c = SKIN * (1.0 + 0.10 * broad + 0.05 * mottling);
-    let mut skin = 1.0f32;
     // Warmer, redder areas: cheeks, nose tip, ears, knuckles, elbows, knees, fingertips, toes.
     let mut flush = 0.0f32;
     if rect == atlas::HEAD || rect == atlas::NOSE || rect == atlas::EAR {
@@ -112,69 +122,39 @@ fn paint(p: Vec3, n: Vec3, rect: [f32; 4]) -> (Vec3, f32) {
         );
         c = c.lerp(LIPS, (lip * 2.5).min(1.0) * 0.85);
         if n.z > 0.2 {
-            {
-                let (ex, ey) = (0.032f32, 1.624f32);
-                let dx = (q.x - ex) / 0.0125;
-                let dy = (q.y - ey) / 0.0065;
-                let r2 = dx * dx + dy * dy;
-                if r2 < 1.0 {
-                    c = Vec3::new(0.93, 0.91, 0.88);
-                    skin = 0.0;
-                    let ir = ((q.x - ex) * (q.x - ex) + (q.y - ey) * (q.y - ey)).sqrt();
-                    if ir < 0.0055 {
-                        c = Vec3::new(0.28, 0.19, 0.12);
-                    }
-                    if ir < 0.0025 {
-                        c = Vec3::splat(0.04);
-                    }
-                }
-                // Upper lid line and brow.
-                if (1.0..1.5).contains(&r2) && q.y > ey {
-                    c *= 0.55;
-                }
-                let bx = (q.x - ex) / 0.018;
-                let by = q.y - (ey + 0.018 - 0.006 * bx * bx);
-                if bx.abs() < 1.0 && by.abs() < 0.0025 {
-                    c = c.lerp(HAIR, 0.85);
-                    skin = 0.15;
-                }
+            // Upper lid line and brow around the eyeball (a part of its own).
+            let (ex, ey) = (0.032f32, 1.624f32);
+            let r2 = sq((q.x - ex) / 0.0125) + sq((q.y - ey) / 0.0065);
+            if (1.0..1.5).contains(&r2) && q.y > ey {
+                c *= 0.55;
+            }
+            let bx = (q.x - ex) / 0.018;
+            let by = q.y - (ey + 0.018 - 0.006 * bx * bx);
+            if bx.abs() < 1.0 && by.abs() < 0.0025 {
+                c = c.lerp(HAIR, 0.85);
             }
         }
         // Hair cap: hairline high at the forehead, low at the nape.
-        let front = ((q.z - 0.0) / 0.08).clamp(-1.0, 1.0);
-        let hairline = 1.680 - 0.006 * (1.0 - front) * 0.5 - 0.095 * (-front).max(0.0)
-            + 0.012 * sq(q.x / 0.08) * front.max(0.0);
-        let edge = ((q.y - hairline) / 0.006).clamp(0.0, 1.0);
+        let edge = super::outfit::hair_cover(p);
         if edge > 0.0 {
             let strands = fbm3(Vec3::new(q.x * 300.0, q.y * 60.0, q.z * 300.0), 2, 5);
             c = c.lerp(HAIR * (0.8 + 0.5 * strands), edge);
-            skin = skin.min(1.0 - edge);
         }
     }
-    if rect == atlas::TORSO || rect == atlas::LEG {
-        let fabric = 0.9 + 0.2 * fbm3(q * 120.0, 2, 9);
-        if q.y < 0.995 && !(rect == atlas::LEG && q.y < 0.74) {
-            c = SHORTS * fabric;
-            skin = 0.0;
-        } else if rect == atlas::TORSO {
-            // Tank top: oval armholes and a scooped neckline, deeper at the front.
-            let arm = sq((q.x - 0.178) / 0.075) + sq((q.y - 1.43) / 0.15);
-            let depth = if q.z > 0.0 { 0.13 } else { 0.06 };
-            let neck = sq(q.x / 0.088) + sq((q.y - 1.50) / depth);
-            if arm > 1.0 && neck > 1.0 {
-                c = SHIRT * fabric;
-                skin = 0.0;
-            }
-        }
+    let fabric = 0.9 + 0.2 * fbm3(q * 120.0, 2, 9);
+    match mat {
+        Mat::Shorts => c = SHORTS * fabric,
+        Mat::TankTop => c = SHIRT * fabric,
+        _ => {}
     }
-    (c.clamp(Vec3::ZERO, Vec3::ONE), skin)
+    c.clamp(Vec3::ZERO, Vec3::ONE)
 }
 
-/// Bakes the atlas for `mesh` (bind pose) and returns RGBA8 pixels (alpha: the skin mask).
-pub fn bake(mesh: &Mesh) -> Vec<u8> {
+/// Bakes the atlas for `mesh` (bind pose), triangle `t` of material `mats[t]`, and returns
+/// RGBA8 pixels (opaque).
+pub fn bake(mesh: &Mesh, mats: &[Mat]) -> Vec<u8> {
     let size = SIZE as usize;
-    // rgb: colour; w: skin coverage.
-    let mut col = vec![Vec4::ZERO; size * size];
+    let mut col = vec![Vec3::ZERO; size * size];
     let mut filled = vec![false; size * size];
     let rects = [
         atlas::TORSO,
@@ -187,8 +167,9 @@ pub fn bake(mesh: &Mesh) -> Vec<u8> {
         atlas::FINGER,
         atlas::EAR,
         atlas::NOSE,
+        atlas::EYE,
     ];
-    for t in mesh.indices.chunks(3) {
+    for (t, &mat) in mesh.indices.chunks(3).zip(mats) {
         let idx = [t[0] as usize, t[1] as usize, t[2] as usize];
         let uv = idx.map(|i| mesh.uvs[i] * SIZE as f32);
         let centre = (mesh.uvs[idx[0]] + mesh.uvs[idx[1]] + mesh.uvs[idx[2]]) / 3.0;
@@ -222,8 +203,7 @@ pub fn bake(mesh: &Mesh) -> Vec<u8> {
                     + mesh.normals[idx[1]] * w1
                     + mesh.normals[idx[2]] * w2)
                     .normalize_or_zero();
-                let (c, skin) = paint(pos, nrm, rect);
-                col[y * size + x] = c.extend(skin);
+                col[y * size + x] = paint(pos, nrm, rect, mat);
                 filled[y * size + x] = true;
             }
         }
@@ -237,7 +217,7 @@ pub fn bake(mesh: &Mesh) -> Vec<u8> {
                 if prev[y * size + x] {
                     continue;
                 }
-                let mut sum = Vec4::ZERO;
+                let mut sum = Vec3::ZERO;
                 let mut k = 0;
                 for (dx, dy) in [(-1i32, 0i32), (1, 0), (0, -1), (0, 1)] {
                     let (nx, ny) = (x as i32 + dx, y as i32 + dy);
@@ -260,12 +240,12 @@ pub fn bake(mesh: &Mesh) -> Vec<u8> {
     }
     let mut out = Vec::with_capacity(size * size * 4);
     for (c, f) in col.iter().zip(&filled) {
-        let c = if *f { *c } else { SKIN.extend(1.0) };
+        let c = if *f { *c } else { SKIN };
         out.extend_from_slice(&[
             (c.x * 255.0 + 0.5) as u8,
             (c.y * 255.0 + 0.5) as u8,
             (c.z * 255.0 + 0.5) as u8,
-            (c.w.clamp(0.0, 1.0) * 255.0 + 0.5) as u8,
+            255,
         ]);
     }
     out
@@ -275,11 +255,6 @@ pub fn bake(mesh: &Mesh) -> Vec<u8> {
 pub fn encode_png(rgba: &[u8], w: u32, h: u32) -> Vec<u8> {
     let rgb: Vec<u8> = rgba.chunks(4).flat_map(|p| [p[0], p[1], p[2]]).collect();
     encode(&rgb, w, h, image::ExtendedColorType::Rgb8)
-}
-
-/// Encodes RGBA8 pixels as a PNG keeping the alpha channel (no metadata, deterministic).
-pub fn encode_png_rgba(rgba: &[u8], w: u32, h: u32) -> Vec<u8> {
-    encode(rgba, w, h, image::ExtendedColorType::Rgba8)
 }
 
 fn encode(pixels: &[u8], w: u32, h: u32, colour: image::ExtendedColorType) -> Vec<u8> {

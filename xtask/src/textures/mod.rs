@@ -1,55 +1,51 @@
 //! The GPU block encodings of every texture the project ships (part of `cargo xtask assets`):
-//! for every image a glTF file's materials reference — the character's, each prop's — and the
-//! scanned head's two maps, in the role the material gives it (its colour space, whether its
-//! alpha is kept), the full mip chain the renderer builds (`dermis_texture::mip_chain`) encoded
-//! as BC (BC1, BC3 where the alpha is the skin mask: desktop GPUs) and ETC2 (RGB8 / RGBA8:
-//! every Android GPU), each in a KTX2 file beside its source
-//! recording the source's hash (`dermis_texture::sidecar_path`). Deterministic: the same sources give the same bytes.
+//! every image a glTF file's materials reference — the character's, each prop's — in each
+//! role the engine's loader reads it in (`dermis_core::asset`: colour, sRGB, or data, linear;
+//! the file is loaded by the engine to know which), and the scanned head's maps in theirs
+//! (`face::head::MAPS`): the full mip chain the renderer builds (`dermis_texture::mip_chain`)
+//! encoded as BC (BC1, or BC3 where the image has alpha: desktop GPUs) and ETC2 (RGB8 / RGBA8:
+//! every Android GPU), each in a KTX2 file beside its source recording the source's hash
+//! (`dermis_texture::sidecar_path`). Deterministic: the same sources give the same bytes.
 
 pub mod etc2;
 
 use std::path::Path;
 
+use dermis_core::asset::load_gltf_slice;
 use dermis_texture::{
     fnv1a64, level_size, mip_chain, sidecar_path, BlockFormat, BlockImage, Family, TextureRole,
 };
 
-/// The scanned head's maps and their roles, under the assets root (as `face::head` reads
-/// them; dermis-core's tests load the head from its encodings, so a rename shows there).
-pub const HEAD_MAPS: [(&str, TextureRole); 2] = [
-    ("head/Map-COL.jpg", TextureRole::BaseColor),
-    (
-        "head/Infinite-Level_02_Tangent_SmoothUV.jpg",
-        TextureRole::Normal,
-    ),
-];
-
-/// Every (image, role) the materials of a .glb reference, each once, with the image's bytes
-/// (the project's files embed their images).
+/// Every (image, role) the engine loads from a .glb, each once, with the image's bytes (the
+/// project's files embed their images).
 fn glb_textures(bytes: &[u8], file: &str) -> Result<Vec<(usize, TextureRole, Vec<u8>)>, String> {
+    // The engine's own loader decides what is read in which role; with no files beside it,
+    // it looks for no encoding and decodes every image.
+    let no_files = |uri: &str| -> Result<Vec<u8>, String> { Err(format!("no file {uri}")) };
+    let model = load_gltf_slice(bytes, file, &no_files).map_err(|e| e.to_string())?;
+    if let Some(w) = model.warnings.first() {
+        return Err(w.clone());
+    }
     let gltf = gltf::Gltf::from_slice(bytes).map_err(|e| format!("{file}: {e}"))?;
     let blob = gltf.blob.as_deref().unwrap_or_default();
-    let mut out: Vec<(usize, TextureRole, Vec<u8>)> = Vec::new();
-    for mat in gltf.document.materials() {
-        for (role, ti) in TextureRole::of_material(&mat) {
-            let Some(image) = gltf.document.textures().nth(ti).map(|t| t.source()) else {
-                continue;
-            };
-            if out
-                .iter()
-                .any(|(i, r, _)| *i == image.index() && *r == role)
-            {
-                continue;
-            }
-            let gltf::image::Source::View { view, .. } = image.source() else {
-                return Err(format!("{file}: image {} is not embedded", image.index()));
-            };
-            let range = view.offset()..view.offset() + view.length();
-            let data = blob
-                .get(range)
-                .ok_or_else(|| format!("{file}: image {} outside the BIN chunk", image.index()))?;
-            out.push((image.index(), role, data.to_vec()));
-        }
+    let mut out = Vec::new();
+    for t in &model.textures {
+        let index = t
+            .image
+            .ok_or_else(|| format!("{file}: a texture from no image"))?;
+        let image = gltf
+            .document
+            .images()
+            .nth(index)
+            .ok_or_else(|| format!("{file}: no image {index}"))?;
+        let gltf::image::Source::View { view, .. } = image.source() else {
+            return Err(format!("{file}: image {index} is not embedded"));
+        };
+        let range = view.offset()..view.offset() + view.length();
+        let data = blob
+            .get(range)
+            .ok_or_else(|| format!("{file}: image {index} outside the BIN chunk"))?;
+        out.push((index, TextureRole::of_srgb(t.srgb), data.to_vec()));
     }
     Ok(out)
 }
@@ -102,10 +98,11 @@ pub fn sources(assets: &Path, head_assets: &Path) -> Result<Vec<Source>, String>
             });
         }
     }
-    for (file, role) in HEAD_MAPS {
+    for (name, role) in dermis_core::face::head::MAPS {
+        let file = format!("{}/{name}", dermis_core::face::head::DIR);
         out.push(Source {
-            bytes: read(head_assets, file)?,
-            file: file.to_string(),
+            bytes: read(head_assets, &file)?,
+            file,
             image: None,
             role,
         });
@@ -113,19 +110,13 @@ pub fn sources(assets: &Path, head_assets: &Path) -> Result<Vec<Source>, String>
     Ok(out)
 }
 
-/// The source decoded to RGBA8 as the role uses it (alpha 255 unless it is kept).
+/// The source decoded to RGBA8, as the engine decodes it (alpha as the file has it).
 fn decode(source: &Source) -> Result<(Vec<u8>, u32, u32), String> {
     let img = image::load_from_memory(&source.bytes)
         .map_err(|e| format!("{}: {e}", source.file))?
         .into_rgba8();
     let (w, h) = img.dimensions();
-    let mut rgba = img.into_raw();
-    if !source.role.alpha() {
-        for px in rgba.chunks_exact_mut(4) {
-            px[3] = 255;
-        }
-    }
-    Ok((rgba, w, h))
+    Ok((img.into_raw(), w, h))
 }
 
 /// One level in `format`.
@@ -165,10 +156,12 @@ fn encode_level(rgba: &[u8], w: u32, h: u32, format: BlockFormat, srgb: bool) ->
 pub fn encode(source: &Source, families: &[Family]) -> Result<Vec<(String, Vec<u8>)>, String> {
     let (rgba, w, h) = decode(source)?;
     let srgb = source.role.srgb();
+    // Alpha is kept (BC3, ETC2 RGBA8) only where a texel has some; else RGB, which reads 255.
+    let alpha = rgba.chunks_exact(4).any(|px| px[3] < 255);
     let levels = mip_chain(&rgba, w, h, srgb);
     let mut out = Vec::new();
     for &family in families {
-        let Some(format) = BlockFormat::for_role(family, source.role) else {
+        let Some(format) = BlockFormat::for_image(family, alpha) else {
             continue;
         };
         let encoded = levels
@@ -194,7 +187,8 @@ pub fn encode(source: &Source, families: &[Family]) -> Result<Vec<(String, Vec<u
 }
 
 /// Encodes every shipped texture — the models' in `out`, the head's in `head_assets` — into
-/// `out` (the assets root's layout); returns what it wrote.
+/// `out` (the assets root's layout); returns what it wrote. A `.ktx2` file left in those
+/// folders from an earlier run that no source makes now is removed (the APK would ship it).
 pub fn write_all(out: &Path, head_assets: &Path) -> Result<Vec<(String, usize)>, String> {
     let mut written = Vec::new();
     for source in sources(out, head_assets)? {
@@ -207,7 +201,41 @@ pub fn write_all(out: &Path, head_assets: &Path) -> Result<Vec<(String, usize)>,
             written.push((rel, bytes.len()));
         }
     }
+    let rels: Vec<&str> = written.iter().map(|(r, _)| r.as_str()).collect();
+    for stale in stale_files(out, &rels) {
+        let path = out.join(&stale);
+        std::fs::remove_file(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+        println!("removed {} (no source makes it now)", path.display());
+    }
     Ok(written)
+}
+
+/// The `.ktx2` files in the folders of `made` (paths relative to `root`) that are not in it.
+fn stale_files(root: &Path, made: &[&str]) -> Vec<String> {
+    let mut dirs: Vec<&str> = made
+        .iter()
+        .filter_map(|r| r.rsplit_once('/'))
+        .map(|d| d.0)
+        .collect();
+    dirs.sort_unstable();
+    dirs.dedup();
+    let mut out = Vec::new();
+    for dir in dirs {
+        let Ok(entries) = std::fs::read_dir(root.join(dir)) else {
+            continue;
+        };
+        for name in entries
+            .flatten()
+            .filter_map(|e| e.file_name().into_string().ok())
+        {
+            let rel = format!("{dir}/{name}");
+            if name.ends_with(".ktx2") && !made.contains(&rel.as_str()) {
+                out.push(rel);
+            }
+        }
+    }
+    out.sort();
+    out
 }
 
 #[cfg(test)]
@@ -219,7 +247,8 @@ mod tests {
     }
 
     /// Every shipped texture has its committed encodings, made from the current source (its
-    /// hash), of its size and role; the smallest is encoded again and is byte-identical (the
+    /// hash), of its size and role, and no other encoding is committed beside them; the
+    /// smallest is encoded again and is byte-identical (the
     /// encoders are deterministic and unchanged). Encoding everything takes a minute: that is
     /// `cargo xtask assets`'s job, not the test's.
     #[test]
@@ -242,6 +271,16 @@ mod tests {
                 assert_eq!(img.format.family(), family);
             }
         }
+        let made: Vec<String> = sources
+            .iter()
+            .flat_map(|s| FAMILIES.map(|f| sidecar_path(&s.file, s.image, s.role, f)))
+            .collect();
+        let made: Vec<&str> = made.iter().map(String::as_str).collect();
+        let stale = stale_files(&assets, &made);
+        assert!(
+            stale.is_empty(),
+            "{stale:?}: no source makes them; run `cargo xtask assets`"
+        );
         let smallest = sources.iter().min_by_key(|s| s.bytes.len()).unwrap();
         for (rel, bytes) in encode(smallest, &FAMILIES).unwrap() {
             let committed = std::fs::read(assets.join(&rel)).unwrap();

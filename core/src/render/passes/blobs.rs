@@ -1,0 +1,423 @@
+//! Blob (contact) shadows under the character and the props that stand on the ground
+//! (`shaders/shadow.wgsl`): one instanced draw of ground quads, each a soft rounded footprint
+//! computed in the fragment shader, multiplied into the ground's colour. Drawn after the floor
+//! and before everything else, depth-tested against the floor (lifted [`LIFT`] above it),
+//! never writing depth, so whatever stands on the ground covers its own shadow; alpha — the
+//! subsurface pass's marker — and the spread target are write-masked off.
+//!
+//! The pass exists only in a renderer that enabled the shadows and has a caster loaded; the
+//! split variant only where the scene can reach a screen-space model. Per frame the blobs are
+//! staged into buffers reserved at load and uploaded only when they changed.
+
+use glam::{Mat4, Vec3};
+
+use super::subsurface::SPLIT_FORMAT;
+use super::{BuildCtx, Pass, Stage};
+use crate::asset::Model;
+use crate::render::pipelines::PipelineDevice;
+use crate::render::prepared::{Drawn, PassFrame, PreparedFrame};
+use crate::render::resources::Resources;
+use crate::render::targets::{depth_state, multisample, MSAA_SAMPLES};
+use crate::scene::{CharacterBound, FramePacket, PropInstance, PropKind, CHARACTER};
+use crate::shader::{compose, ShaderDefs};
+
+/// Height of the ground the track stands on (m).
+pub const GROUND_Y: f32 = 0.0;
+/// How far the blobs float above the ground, against z-fighting (m).
+pub const LIFT: f32 = 0.02;
+/// Height above the ground at which a caster's blob has faded out (m).
+pub const FADE_HEIGHT: f32 = 1.6;
+/// Darkness at a blob's centre: the character's, a prop's.
+pub const CHARACTER_DARKNESS: f32 = 0.6;
+pub const PROP_DARKNESS: f32 = 0.5;
+/// Blobs one frame can draw (the character's included).
+pub const MAX_BLOBS: usize = 256;
+
+/// Whether props of `kind` cast a blob (the floor and the walls do not).
+pub fn casts(kind: PropKind) -> bool {
+    matches!(kind, PropKind::Table | PropKind::Chair | PropKind::Obstacle)
+}
+
+/// One blob as the shader reads it (see `BlobIn` in `shadow.wgsl`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+#[repr(C)]
+pub struct Blob {
+    pub centre: [f32; 4],
+    pub axes: [f32; 4],
+    pub shape: [f32; 4],
+}
+
+/// A caster's fade with its height above the ground: (darkness factor, size factor), both 1
+/// on the ground; a jumping runner's blob shrinks and lightens.
+pub fn height_fade(height: f32) -> (f32, f32) {
+    let k = (1.0 - height.max(0.0) / FADE_HEIGHT).clamp(0.0, 1.0);
+    (k, 0.5 + 0.5 * k)
+}
+
+impl Blob {
+    /// The character's blob for its world matrix (feet at the origin of the model).
+    pub fn character(bound: &CharacterBound, world: Mat4) -> Self {
+        let feet = world.w_axis.truncate();
+        let scale = world.x_axis.truncate().length();
+        let (dark, size) = height_fade(feet.y - GROUND_Y);
+        let r = bound.radius * scale * size;
+        Self {
+            centre: [feet.x, GROUND_Y + LIFT, feet.z, CHARACTER_DARKNESS * dark],
+            axes: [1.0, 0.0, 0.0, 0.0],
+            // Half dark at the body's radius, gone a soft width (0.2 r) beyond it.
+            shape: [r, r * 0.6, 0.0, 0.0],
+        }
+    }
+
+    /// A prop's blob: its model-space `footprint` placed by `transform`.
+    pub fn prop(footprint: &Footprint, transform: Mat4) -> Self {
+        let base = transform.transform_point3(Vec3::new(
+            footprint.centre[0],
+            footprint.min_y,
+            footprint.centre[1],
+        ));
+        let x = transform.x_axis.truncate();
+        let z = transform.z_axis.truncate();
+        let axis = glam::Vec2::new(x.x, x.z).normalize_or(glam::Vec2::X);
+        let half = [
+            footprint.half[0] * x.length(),
+            footprint.half[1] * z.length(),
+        ];
+        let (dark, size) = height_fade(base.y - GROUND_Y);
+        let soft = 0.12 + 0.15 * half[0].min(half[1]);
+        Self {
+            centre: [base.x, GROUND_Y + LIFT, base.z, PROP_DARKNESS * dark],
+            axes: [axis.x, axis.y, half[0] * size, half[1] * size],
+            shape: [0.04, soft, 0.0, 0.0],
+        }
+    }
+}
+
+/// A prop model's footprint on the ground, in model space.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Footprint {
+    /// Centre (x, z) and half extents (x, z) of its bounds seen from above (m).
+    pub centre: [f32; 2],
+    pub half: [f32; 2],
+    /// Its lowest point (m).
+    pub min_y: f32,
+}
+
+impl Footprint {
+    /// The bounds of `model`'s meshes in its rest pose, seen from above; `None` without
+    /// geometry.
+    pub fn of(model: &Model) -> Option<Self> {
+        let mut lo = Vec3::splat(f32::INFINITY);
+        let mut hi = Vec3::splat(f32::NEG_INFINITY);
+        let mut stack: Vec<(usize, Mat4)> =
+            model.roots.iter().map(|&r| (r, Mat4::IDENTITY)).collect();
+        while let Some((n, parent)) = stack.pop() {
+            let node = &model.nodes[n];
+            let world = parent * node.local.matrix();
+            if let Some(mesh) = node.mesh {
+                for prim in &model.meshes[mesh].primitives {
+                    let (a, b) = (prim.bounds.min, prim.bounds.max);
+                    for i in 0..8 {
+                        let corner = Vec3::new(
+                            if i & 1 == 0 { a.x } else { b.x },
+                            if i & 2 == 0 { a.y } else { b.y },
+                            if i & 4 == 0 { a.z } else { b.z },
+                        );
+                        let p = world.transform_point3(corner);
+                        lo = lo.min(p);
+                        hi = hi.max(p);
+                    }
+                }
+            }
+            stack.extend(node.children.iter().map(|&c| (c, world)));
+        }
+        (lo.x <= hi.x).then_some(Self {
+            centre: [(lo.x + hi.x) * 0.5, (lo.z + hi.z) * 0.5],
+            half: [(hi.x - lo.x) * 0.5, (hi.z - lo.z) * 0.5],
+            min_y: lo.y,
+        })
+    }
+}
+
+/// What casts: the footprints of the loaded casting prop kinds and whether a character is
+/// loaded (recorded at load, so the shadows can be enabled later).
+#[derive(Clone, Debug, Default)]
+pub struct Casters {
+    pub props: Vec<(PropKind, Footprint)>,
+    pub character: Option<CharacterBound>,
+}
+
+impl Casters {
+    pub fn set_prop(&mut self, kind: PropKind, model: &Model) {
+        self.props.retain(|(k, _)| *k != kind);
+        if casts(kind) {
+            if let Some(f) = Footprint::of(model) {
+                self.props.push((kind, f));
+            }
+        }
+    }
+
+    pub fn any(&self) -> bool {
+        self.character.is_some() || !self.props.is_empty()
+    }
+}
+
+/// The composed WGSL of the blob shader (`split`: the subsurface frame's two targets).
+pub fn shader_source(split: bool) -> String {
+    let defs = if split {
+        ShaderDefs::new().flag("SCREEN_SPACE")
+    } else {
+        ShaderDefs::new()
+    };
+    compose("shadow", &defs).expect("the blob shader composes")
+}
+
+/// The GPU side: pipelines, the reserved instance buffer and the staged blobs.
+pub struct BlobsPass {
+    pipeline: wgpu::RenderPipeline,
+    /// For frames with the subsurface pass.
+    split: Option<wgpu::RenderPipeline>,
+    instances: wgpu::Buffer,
+    /// Slot 0: the character's blob; then the props'. Capacity [`MAX_BLOBS`], never grown.
+    staged: Vec<Blob>,
+    uploaded: Vec<Blob>,
+    /// Whether the blobs are drawn (the pass stays built when they are switched off).
+    pub enabled: bool,
+}
+
+impl BlobsPass {
+    fn new(ctx: &BuildCtx) -> Self {
+        let device = ctx.device;
+        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("blob shadow"),
+            bind_group_layouts: &[Some(&ctx.layouts.frame)],
+            immediate_size: 0,
+        });
+        let multiply = wgpu::BlendState {
+            color: wgpu::BlendComponent {
+                src_factor: wgpu::BlendFactor::Zero,
+                dst_factor: wgpu::BlendFactor::Src,
+                operation: wgpu::BlendOperation::Add,
+            },
+            alpha: wgpu::BlendComponent::REPLACE,
+        };
+        // Colour only: alpha is the subsurface marker (and the output's coverage).
+        let shade = |format| {
+            Some(wgpu::ColorTargetState {
+                format,
+                blend: Some(multiply),
+                write_mask: wgpu::ColorWrites::COLOR,
+            })
+        };
+        let build = |split: bool| {
+            let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some("blob shadow"),
+                source: wgpu::ShaderSource::Wgsl(shader_source(split).into()),
+            });
+            let untouched = Some(wgpu::ColorTargetState {
+                format: SPLIT_FORMAT,
+                blend: None,
+                write_mask: wgpu::ColorWrites::empty(),
+            });
+            let targets = if split {
+                vec![shade(SPLIT_FORMAT), untouched.clone(), untouched]
+            } else {
+                vec![shade(ctx.format)]
+            };
+            pipeline(ctx.pipelines(), &layout, &module, &targets)
+        };
+        let instances = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("blob shadows"),
+            size: (MAX_BLOBS * std::mem::size_of::<Blob>()) as u64,
+            usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let mut staged = Vec::with_capacity(MAX_BLOBS);
+        staged.push(Blob::default());
+        Self {
+            pipeline: build(false),
+            split: ctx.set.needs_subsurface_pass().then(|| build(true)),
+            instances,
+            staged,
+            uploaded: Vec::with_capacity(MAX_BLOBS),
+            enabled: true,
+        }
+    }
+
+    /// Stages the casting props' blobs of `instances`.
+    fn stage_props(&mut self, casters: &Casters, instances: &[PropInstance]) {
+        self.staged.truncate(1);
+        for i in instances {
+            if self.staged.len() == MAX_BLOBS {
+                break;
+            }
+            if let Some((_, f)) = casters.props.iter().find(|(k, _)| *k == i.kind) {
+                self.staged.push(Blob::prop(f, i.transform));
+            }
+        }
+    }
+
+    /// Uploads every staged blob if any changed; returns the uploads (0 or 1). A run moves
+    /// the runner every frame but the props only now and then: then only the character's
+    /// slot is written. No allocation: the buffers were reserved at load.
+    fn upload(&mut self, queue: &wgpu::Queue) -> u32 {
+        if self.staged == self.uploaded {
+            return 0;
+        }
+        let props_same =
+            self.uploaded.len() == self.staged.len() && self.uploaded[1..] == self.staged[1..];
+        let upload = if props_same { 1 } else { self.staged.len() };
+        self.uploaded.clear();
+        self.uploaded.extend_from_slice(&self.staged);
+        queue.write_buffer(
+            &self.instances,
+            0,
+            bytemuck::cast_slice(&self.staged[..upload]),
+        );
+        1
+    }
+
+    /// The blobs a frame draws: the props' and, when the subject is drawn, the character's.
+    fn range(&self, frame: &PreparedFrame) -> std::ops::Range<u32> {
+        let first = if frame.subject.is_some() { 0 } else { 1 };
+        first..(self.uploaded.len() as u32).max(first)
+    }
+}
+
+impl Pass for BlobsPass {
+    fn build(ctx: &BuildCtx) -> Option<Self> {
+        ctx.blobs.then(|| Self::new(ctx))
+    }
+
+    fn stage(&self) -> Stage {
+        Stage::Scene
+    }
+
+    /// Stages the subject's blob where it was placed and the props' where the frame placed
+    /// them; runs when switched on in a frame with props (the blobs lie on the floor).
+    fn prepare(
+        &mut self,
+        queue: &wgpu::Queue,
+        packet: &FramePacket,
+        frame: &mut PreparedFrame,
+        res: &Resources,
+    ) -> PassFrame {
+        if res.casters.character.is_some() {
+            self.staged[0] = Blob::character(&CHARACTER, res.subjects.world);
+        }
+        if let Some(placed) = packet.props {
+            self.stage_props(&res.casters, placed);
+        }
+        frame.uploads += self.upload(queue);
+        let runs = self.enabled && frame.draw.props && !self.range(frame).is_empty();
+        PassFrame { runs, steps: 0 }
+    }
+
+    /// The blobs, blended over the floor and depth-tested against everything.
+    fn draw(
+        &self,
+        frame: &PreparedFrame,
+        _res: &Resources,
+        pass: &mut wgpu::RenderPass<'_>,
+    ) -> Drawn {
+        let pipeline = match (frame.split, &self.split) {
+            (Some(_), Some(split)) => split,
+            (Some(_), None) => return Drawn::default(),
+            (None, _) => &self.pipeline,
+        };
+        pass.set_pipeline(pipeline);
+        pass.set_vertex_buffer(0, self.instances.slice(..));
+        pass.draw(0..6, self.range(frame));
+        Drawn::calls(1)
+    }
+}
+
+fn pipeline(
+    dev: PipelineDevice,
+    layout: &wgpu::PipelineLayout,
+    module: &wgpu::ShaderModule,
+    targets: &[Option<wgpu::ColorTargetState>],
+) -> wgpu::RenderPipeline {
+    let attributes = wgpu::vertex_attr_array![0 => Float32x4, 1 => Float32x4, 2 => Float32x4];
+    dev.device
+        .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("blob shadow"),
+            layout: Some(layout),
+            vertex: wgpu::VertexState {
+                module,
+                entry_point: Some("vs_main"),
+                compilation_options: Default::default(),
+                buffers: &[Some(wgpu::VertexBufferLayout {
+                    array_stride: std::mem::size_of::<Blob>() as u64,
+                    step_mode: wgpu::VertexStepMode::Instance,
+                    attributes: &attributes,
+                })],
+            },
+            primitive: wgpu::PrimitiveState {
+                topology: wgpu::PrimitiveTopology::TriangleList,
+                // A rotated quad may face either way.
+                cull_mode: None,
+                ..Default::default()
+            },
+            depth_stencil: Some(depth_state(false, wgpu::CompareFunction::Less)),
+            multisample: multisample(MSAA_SAMPLES),
+            fragment: Some(wgpu::FragmentState {
+                module,
+                entry_point: Some("fs_main"),
+                compilation_options: Default::default(),
+                targets,
+            }),
+            multiview_mask: None,
+            cache: dev.cache,
+        })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn both_variants_parse_and_validate() {
+        for split in [false, true] {
+            let src = shader_source(split);
+            let module = naga::front::wgsl::parse_str(&src).unwrap_or_else(|e| panic!("{e}"));
+            naga::valid::Validator::new(
+                naga::valid::ValidationFlags::all(),
+                naga::valid::Capabilities::default(),
+            )
+            .validate(&module)
+            .unwrap_or_else(|e| panic!("{e:?}"));
+        }
+    }
+
+    #[test]
+    fn a_jumping_casters_blob_is_smaller_and_lighter() {
+        let ground = Blob::character(&CHARACTER, Mat4::from_translation(Vec3::new(1.0, 0.0, 2.0)));
+        let air = Blob::character(&CHARACTER, Mat4::from_translation(Vec3::new(1.0, 0.8, 2.0)));
+        assert_eq!(ground.centre[..3], [1.0, GROUND_Y + LIFT, 2.0]);
+        assert_eq!(air.centre[..3], ground.centre[..3]);
+        assert!(air.centre[3] < ground.centre[3] && air.centre[3] > 0.0);
+        assert!(air.shape[0] < ground.shape[0] && air.shape[1] < ground.shape[1]);
+        assert_eq!(height_fade(10.0).0, 0.0);
+    }
+
+    #[test]
+    fn a_props_blob_follows_its_transform() {
+        let f = Footprint {
+            centre: [0.0, 0.0],
+            half: [0.5, 0.5],
+            min_y: 0.0,
+        };
+        let m = Mat4::from_scale_rotation_translation(
+            Vec3::new(0.9, 0.55, 0.6),
+            glam::Quat::from_rotation_y(std::f32::consts::FRAC_PI_2),
+            Vec3::new(-1.3, 0.0, 10.0),
+        );
+        let b = Blob::prop(&f, m);
+        assert!((b.centre[0] + 1.3).abs() < 1e-5 && (b.centre[2] - 10.0).abs() < 1e-5);
+        assert!((b.axes[2] - 0.45).abs() < 1e-5 && (b.axes[3] - 0.3).abs() < 1e-5);
+        // The local x axis turned a quarter about +y: world (0, 0, −1) in (x, z).
+        assert!(b.axes[0].abs() < 1e-5 && (b.axes[1] + 1.0).abs() < 1e-5);
+        assert!(casts(PropKind::Obstacle) && !casts(PropKind::FloorTile));
+    }
+}

@@ -1,0 +1,227 @@
+//! The subject, a part per primitive, each as its material's role says (`scene::Roles`): skin
+//! parts with the frame's shading model — the model's character pipeline (`model_gpu.rs`,
+//! built at load or by the background builder), its constants at group 1 — and standard
+//! parts with the glTF metallic-roughness lighting the props share, through this pass's own
+//! pipelines (one per variant the scene's materials need: masked, blended, double-sided,
+//! normal-mapped; and their two-target forms where the scene can reach a screen-space model).
+//! Every part binds its palette (group 2) and its material (group 3). Opaque parts first,
+//! blended ones last; the subject itself draws first in the scene's pass, so what the camera
+//! frames covers the floor and the props behind it, whose hidden texels then fail the early
+//! depth test. A model outside the scene's pipeline set is not drawn (and never compiled at
+//! run time).
+
+use super::{BuildCtx, Pass, Stage};
+use crate::asset::Model;
+use crate::render::material_gpu::Variant;
+use crate::render::mesh::vertex_layout;
+use crate::render::passes::subsurface::SPLIT_FORMAT;
+use crate::render::pipelines::{pipeline_with, Surfaces};
+use crate::render::prepared::{Drawn, PassFrame, PreparedFrame};
+use crate::render::resources::Resources;
+use crate::scene::{FramePacket, Role, Roles};
+use crate::shader::{compose, ShaderDefs};
+
+/// A standard material's pipeline: its variant and whether it has a normal map.
+pub type StandardKey = (Variant, bool);
+
+/// The standard pipelines `model` drawn as `roles` needs.
+pub fn standard_keys(model: &Model, roles: &Roles) -> Vec<StandardKey> {
+    let mut keys: Vec<StandardKey> = model
+        .meshes
+        .iter()
+        .flat_map(|m| &m.primitives)
+        .filter(|p| roles.role(p.material) == Role::Standard)
+        .map(|p| {
+            let material = p.material.and_then(|i| model.materials.get(i));
+            let mapped = material.and_then(|m| m.normal_texture).is_some();
+            (Variant::of(material), mapped)
+        })
+        .collect();
+    keys.sort();
+    keys.dedup();
+    keys
+}
+
+/// The composed WGSL of a standard part's pipeline.
+pub fn standard_source((variant, mapped): StandardKey, split: bool) -> String {
+    let mut defs = ShaderDefs::new().flag("STANDARD");
+    for (on, flag) in [
+        (mapped, "NORMAL_MAP"),
+        (variant.mask, "ALPHA_MASK"),
+        (variant.blend, "ALPHA_BLEND"),
+        (variant.double_sided, "DOUBLE_SIDED"),
+        (split, "SCREEN_SPACE"),
+    ] {
+        if on {
+            defs = defs.flag(flag);
+        }
+    }
+    compose("character", &defs).expect("built-in shaders compose (checked by tests)")
+}
+
+struct Standard {
+    key: StandardKey,
+    split: bool,
+    pipeline: wgpu::RenderPipeline,
+}
+
+pub struct CharacterPass {
+    standard: Vec<Standard>,
+}
+
+impl CharacterPass {
+    fn standard(&self, key: StandardKey, split: bool) -> Option<&wgpu::RenderPipeline> {
+        self.standard
+            .iter()
+            .find(|s| s.key == key && s.split == split)
+            .map(|s| &s.pipeline)
+    }
+}
+
+/// The colour targets of a standard part's pipeline: opaque, or blended over what is behind
+/// it (straight alpha into the output; premultiplied into the subsurface frame's colour
+/// target, whose alpha — the skin marker — and other targets it leaves).
+fn standard_targets(
+    format: wgpu::TextureFormat,
+    blend: bool,
+    split: bool,
+) -> Vec<Option<wgpu::ColorTargetState>> {
+    let target = |format, blend, write_mask| {
+        Some(wgpu::ColorTargetState {
+            format,
+            blend,
+            write_mask,
+        })
+    };
+    match (split, blend) {
+        (false, false) => vec![target(format, None, wgpu::ColorWrites::ALL)],
+        (false, true) => vec![target(
+            format,
+            Some(wgpu::BlendState::ALPHA_BLENDING),
+            wgpu::ColorWrites::ALL,
+        )],
+        (true, false) => vec![target(SPLIT_FORMAT, None, wgpu::ColorWrites::ALL); 3],
+        (true, true) => vec![
+            target(
+                SPLIT_FORMAT,
+                Some(wgpu::BlendState::PREMULTIPLIED_ALPHA_BLENDING),
+                wgpu::ColorWrites::COLOR,
+            ),
+            target(SPLIT_FORMAT, None, wgpu::ColorWrites::empty()),
+            target(SPLIT_FORMAT, None, wgpu::ColorWrites::empty()),
+        ],
+    }
+}
+
+impl Pass for CharacterPass {
+    fn build(ctx: &BuildCtx) -> Option<Self> {
+        let device = ctx.device;
+        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("standard"),
+            bind_group_layouts: &[
+                Some(&ctx.layouts.frame),
+                Some(&ctx.layouts.model),
+                Some(&ctx.layouts.skinned),
+                Some(&ctx.layouts.material),
+            ],
+            immediate_size: 0,
+        });
+        let splits: &[bool] = if ctx.set.needs_subsurface_pass() {
+            &[false, true]
+        } else {
+            &[false]
+        };
+        let mut standard = Vec::new();
+        for &key in ctx.standard {
+            for &split in splits {
+                let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                    label: Some("standard"),
+                    source: wgpu::ShaderSource::Wgsl(standard_source(key, split).into()),
+                });
+                let (variant, _) = key;
+                let surfaces = Surfaces {
+                    cull: (!variant.double_sided).then_some(wgpu::Face::Back),
+                    depth_write: !variant.blend,
+                };
+                let targets = standard_targets(ctx.format, variant.blend, split);
+                let pipeline = pipeline_with(
+                    ctx.pipelines(),
+                    &layout,
+                    &module,
+                    &targets,
+                    &[vertex_layout()],
+                    "standard",
+                    surfaces,
+                );
+                standard.push(Standard {
+                    key,
+                    split,
+                    pipeline,
+                });
+            }
+        }
+        Some(Self { standard })
+    }
+
+    /// A standard material the scene now has without its pipeline.
+    fn stale(&self, ctx: &BuildCtx) -> bool {
+        ctx.standard
+            .iter()
+            .any(|k| !self.standard.iter().any(|s| s.key == *k))
+    }
+
+    fn stage(&self) -> Stage {
+        Stage::Scene
+    }
+
+    /// Runs when the frame draws a subject.
+    fn prepare(
+        &mut self,
+        _queue: &wgpu::Queue,
+        _packet: &FramePacket,
+        frame: &mut PreparedFrame,
+        res: &Resources,
+    ) -> PassFrame {
+        let runs = frame.subject.is_some() && res.subjects.active().is_some();
+        PassFrame { runs, steps: 0 }
+    }
+
+    fn draw(
+        &self,
+        frame: &PreparedFrame,
+        res: &Resources,
+        pass: &mut wgpu::RenderPass<'_>,
+    ) -> Drawn {
+        let (Some(subject), Some(drawn)) = (res.subjects.active(), frame.subject) else {
+            return Drawn::default();
+        };
+        let Some(group) = res.models.params_group(drawn.shading) else {
+            return Drawn::default();
+        };
+        pass.set_bind_group(1, group, &[]);
+        let split = frame.split.is_some();
+        let mut out = Drawn::default();
+        let gpu = &subject.gpu;
+        // Opaque parts (skin, then standard), then blended ones.
+        for blended in [false, true] {
+            for part in gpu.parts() {
+                let m = &part.material;
+                if m.variant.blend != blended {
+                    continue;
+                }
+                let pipeline = match m.role {
+                    Role::Skin { .. } => res
+                        .models
+                        .pipeline(drawn.shading.map(|s| (s, m.normal_mapped))),
+                    Role::Standard => self.standard((m.variant, m.normal_mapped), split),
+                };
+                let Some(pipeline) = pipeline else { continue };
+                pass.set_pipeline(pipeline);
+                gpu.draw_part(pass, part, true);
+                out.draw_calls += 1;
+                out.triangles += part.triangles;
+            }
+        }
+        out
+    }
+}

@@ -1,0 +1,344 @@
+//! The penumbra map: the distance from every point of the key light's shadow map to the
+//! nearest caster edge, by jump flooding over a grid a quarter of the map's resolution
+//! (`shaders/penumbra.wgsl`). Models that declare the `penumbra` effect (`preintegrated`) read
+//! it to filter their shadow by the material's profile: a receiver at signed distance d from a
+//! straight shadow edge receives the fraction ESF(d) of the light, the edge-spread function of
+//! its diffusion kernel (a table in its LUT), so light bleeds into the shadow as far as the
+//! material carries it — also far beyond what a few filter taps reach.
+//!
+//! Built only where the scene reaches such a model; run only in frames that draw one with a
+//! shadow map. Cost: one seed pass (25 gathers per grid texel) and as many jump passes (nine
+//! loads each) as the material's reach needs — distances beyond [`REACH_MM`] are never read —
+//! over the grid: 128² for the game's 1024² map (4 jump passes), independent of the screen.
+
+use super::{BuildCtx, Pass, Stage};
+use crate::render::layouts;
+use crate::render::light_maps::{LightMaps, PenumbraGrid};
+use crate::render::prepared::{Drawn, PassFrame, PreparedFrame};
+use crate::render::resources::Resources;
+use crate::scene::FramePacket;
+
+/// Shadow-map texels per grid texel (per side).
+pub const BLOCK: u32 = 8;
+/// How far from an edge a distance is needed (mm): the edge-spread table's span.
+pub const REACH_MM: f32 = crate::shading::edge_spread::SPAN_MM as f32;
+/// The grid's texture format: seed uv, depth, valid.
+pub const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+/// The depth step that makes an edge, in metres along the light.
+pub const EDGE_GAP_M: f32 = 0.01;
+/// Uniform slot stride (the minimum uniform offset alignment).
+const SLOT: u64 = 256;
+/// The most passes a grid can need: the seed and one jump per halving of 2¹⁶ texels.
+const MAX_PASSES: usize = 17;
+
+crate::shading::uniform::gpu_struct! {
+/// One pass's constants (`Jump` in `penumbra.wgsl`).
+pub struct Jump {
+    /// This pass's step (grid texels; 0: the seed pass).
+    pub step: f32,
+    /// The grid's size (texels per side).
+    pub grid: f32,
+    /// Shadow-map texels per grid texel.
+    pub block: f32,
+    /// The depth step that makes an edge (the map's depth units).
+    pub edge_gap: f32,
+}
+}
+
+/// The composed pass shader.
+pub fn shader_source() -> String {
+    crate::shader::compose("penumbra", &crate::shader::ShaderDefs::new())
+        .expect("built-in shaders compose")
+}
+
+/// Steps of the jump passes for a grid of `size` texels: size/2, size/4, …, 1.
+pub fn steps(size: u32) -> impl Iterator<Item = u32> {
+    let first = size.next_power_of_two() / 2;
+    std::iter::successors((first >= 1).then_some(first), |s| (*s > 1).then_some(s / 2))
+}
+
+/// The jump steps for a grid of `size` texels over a map `map_width_m` wide: the halvings
+/// from the first power of two that reaches [`REACH_MM`] down to 1.
+pub fn jump_steps(size: u32, map_width_m: f32) -> impl Iterator<Item = u32> {
+    let texel_mm = map_width_m * 1000.0 / size.max(1) as f32;
+    let reach = (REACH_MM / texel_mm.max(1e-6)).ceil().clamp(1.0, 1e6) as u32;
+    steps(size).filter(move |&s| s <= reach.next_power_of_two())
+}
+
+/// The bind group layout of both passes.
+fn layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
+    let fragment = wgpu::ShaderStages::FRAGMENT;
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("penumbra"),
+        entries: &[
+            layouts::uniform(0, fragment),
+            wgpu::BindGroupLayoutEntry {
+                binding: 1,
+                visibility: fragment,
+                ty: wgpu::BindingType::Texture {
+                    sample_type: wgpu::TextureSampleType::Depth,
+                    view_dimension: wgpu::TextureViewDimension::D2,
+                    multisampled: false,
+                },
+                count: None,
+            },
+            wgpu::BindGroupLayoutEntry {
+                binding: 2,
+                visibility: fragment,
+                ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::NonFiltering),
+                count: None,
+            },
+            wgpu::BindGroupLayoutEntry {
+                binding: 3,
+                visibility: fragment,
+                ty: wgpu::BindingType::Texture {
+                    sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                    view_dimension: wgpu::TextureViewDimension::D2,
+                    multisampled: false,
+                },
+                count: None,
+            },
+        ],
+    })
+}
+
+pub struct PenumbraPass {
+    /// The grid size it was built for (texels per side).
+    size: u32,
+    seed: wgpu::RenderPipeline,
+    jump: wgpu::RenderPipeline,
+    uniforms: wgpu::Buffer,
+    /// Per pass (the seed, then one per possible jump): its bind groups reading grid target
+    /// 0 and grid target 1.
+    groups: Vec<[wgpu::BindGroup; 2]>,
+    /// The constants last written (steps, edge gap): unchanged ones are not written again.
+    written: Option<(u32, f32)>,
+}
+
+impl PenumbraPass {
+    /// The pass over `grid`, reading the shadow map of `maps`.
+    fn new(ctx: &BuildCtx, maps: &LightMaps, grid: &PenumbraGrid) -> Self {
+        let device = ctx.device;
+        let size = grid.size;
+        let bind_layout = layout(device);
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("penumbra"),
+            bind_group_layouts: &[Some(&bind_layout)],
+            immediate_size: 0,
+        });
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("penumbra"),
+            source: wgpu::ShaderSource::Wgsl(shader_source().into()),
+        });
+        let pipeline = |entry: &str| {
+            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some(entry),
+                layout: Some(&pipeline_layout),
+                vertex: wgpu::VertexState {
+                    module: &module,
+                    entry_point: Some("vs_main"),
+                    compilation_options: Default::default(),
+                    buffers: &[],
+                },
+                primitive: Default::default(),
+                depth_stencil: None,
+                multisample: Default::default(),
+                fragment: Some(wgpu::FragmentState {
+                    module: &module,
+                    entry_point: Some(entry),
+                    compilation_options: Default::default(),
+                    targets: &[Some(wgpu::ColorTargetState {
+                        format: FORMAT,
+                        blend: None,
+                        write_mask: wgpu::ColorWrites::ALL,
+                    })],
+                }),
+                multiview_mask: None,
+                cache: ctx.cache,
+            })
+        };
+        let passes = steps(size).count() + 1;
+        let uniforms = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("penumbra passes"),
+            size: SLOT * passes as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("penumbra depth"),
+            address_mode_u: wgpu::AddressMode::ClampToEdge,
+            address_mode_v: wgpu::AddressMode::ClampToEdge,
+            ..Default::default()
+        });
+        let group = |slot: u64, previous: &wgpu::TextureView| {
+            device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("penumbra pass"),
+                layout: &bind_layout,
+                entries: &[
+                    wgpu::BindGroupEntry {
+                        binding: 0,
+                        resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                            buffer: &uniforms,
+                            offset: slot * SLOT,
+                            size: wgpu::BufferSize::new(std::mem::size_of::<Jump>() as u64),
+                        }),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 1,
+                        resource: wgpu::BindingResource::TextureView(&maps.shadow),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 2,
+                        resource: wgpu::BindingResource::Sampler(&sampler),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 3,
+                        resource: wgpu::BindingResource::TextureView(previous),
+                    },
+                ],
+            })
+        };
+        let groups = (0..passes as u64)
+            .map(|k| [group(k, &grid.targets[0]), group(k, &grid.targets[1])])
+            .collect();
+        Self {
+            size,
+            seed: pipeline("fs_seed"),
+            jump: pipeline("fs_jump"),
+            uniforms,
+            groups,
+            written: None,
+        }
+    }
+}
+
+impl Pass for PenumbraPass {
+    fn build(ctx: &BuildCtx) -> Option<Self> {
+        let maps = ctx.light_maps?;
+        let grid = maps.penumbra.as_ref()?;
+        ctx.set
+            .models
+            .iter()
+            .any(|m| m.effects().penumbra)
+            .then(|| Self::new(ctx, maps, grid))
+    }
+
+    /// Built for another grid (the light maps were made again at another size).
+    fn stale(&self, ctx: &BuildCtx) -> bool {
+        let grid = ctx.light_maps.and_then(|m| m.penumbra.as_ref());
+        grid.map(|g| g.size) != Some(self.size)
+    }
+
+    fn stage(&self) -> Stage {
+        Stage::Light
+    }
+
+    /// Runs in frames with a shadow map that draw a model with the `penumbra` effect: as
+    /// many jump passes as reach [`REACH_MM`] over the map's width this frame.
+    fn prepare(
+        &mut self,
+        queue: &wgpu::Queue,
+        _packet: &FramePacket,
+        frame: &mut PreparedFrame,
+        _res: &Resources,
+    ) -> PassFrame {
+        let reads = frame.draw.character
+            && frame.subject.is_some()
+            && frame.draw.shading.is_some_and(|m| m.effects().penumbra);
+        if !(frame.shadow.drawn && reads) {
+            return PassFrame::default();
+        }
+        let shadow = &frame.shadow;
+        let gap = EDGE_GAP_M * shadow.depth_per_m;
+        let jumps = jump_steps(self.size, shadow.width_m()).count() as u32;
+        if self.written != Some((jumps, gap)) {
+            let first = std::iter::once(0);
+            let all = first.chain(jump_steps(self.size, shadow.width_m()));
+            for (k, step) in all.enumerate().take(MAX_PASSES) {
+                let jump = Jump {
+                    step: step as f32,
+                    grid: self.size as f32,
+                    block: BLOCK as f32,
+                    edge_gap: gap,
+                };
+                queue.write_buffer(&self.uniforms, k as u64 * SLOT, bytemuck::bytes_of(&jump));
+                frame.uploads += 1;
+            }
+            self.written = Some((jumps, gap));
+        }
+        let u = &mut frame.uniform;
+        u.penumbra_drawn = 1;
+        u.penumbra_grid = self.size as f32;
+        u.edge_gap = gap;
+        PassFrame {
+            runs: true,
+            steps: jumps,
+        }
+    }
+
+    /// The seed pass and this frame's jump passes (one full-screen draw each); the last writes
+    /// grid target 0 (the one receivers bind), so the seed goes where the parity puts it.
+    fn encode(
+        &self,
+        frame: &PreparedFrame,
+        res: &Resources,
+        encoder: &mut wgpu::CommandEncoder,
+    ) -> Drawn {
+        let Some(grid) = res.light_maps.as_ref().and_then(|m| m.penumbra.as_ref()) else {
+            return Drawn::default();
+        };
+        let jumps = frame.pass(<Self as super::Slot>::SLOT).steps as usize;
+        let mut target = jumps % 2;
+        for (k, groups) in self.groups.iter().take(jumps + 1).enumerate() {
+            let seed = k == 0;
+            if !seed {
+                target = 1 - target;
+            }
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some(if seed {
+                    "penumbra seed"
+                } else {
+                    "penumbra jump"
+                }),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view: &grid.targets[target],
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                        store: wgpu::StoreOp::Store,
+                    },
+                })],
+                depth_stencil_attachment: None,
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            pass.set_pipeline(if seed { &self.seed } else { &self.jump });
+            // Jumps read the other target; the seed reads none (bound: the other one).
+            pass.set_bind_group(0, &groups[1 - target], &[]);
+            pass.draw(0..3, 0..1);
+        }
+        Drawn::calls(jumps as u32 + 1)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn jump_steps_halve_down_to_one() {
+        let steps_of = |s: u32| steps(s).collect::<Vec<_>>();
+        assert_eq!(steps_of(256), vec![128, 64, 32, 16, 8, 4, 2, 1]);
+        assert_eq!(steps_of(1), Vec::<u32>::new());
+        assert_eq!(steps_of(5), vec![4, 2, 1]);
+        // The game's grid: 128 texels over ~2.1 m (16.4 mm each) need 8 texels of reach.
+        let jumps = |s: u32, w: f32| jump_steps(s, w).collect::<Vec<_>>();
+        assert_eq!(jumps(128, 2.1), vec![8, 4, 2, 1]);
+        assert_eq!(jumps(128, 1.9), vec![16, 8, 4, 2, 1]);
+        // A fine map reaches as far as its grid allows.
+        assert_eq!(jumps(16, 0.01), steps_of(16));
+        assert!(steps_of(1 << 16).len() < MAX_PASSES);
+    }
+}

@@ -1,0 +1,181 @@
+//! The props (floor tiles, walls, furniture, obstacles), instanced with the plain default-lit
+//! shader (`shaders/prop.wgsl`): each frame the placements a view can see are uploaded per
+//! kind (a kind whose visible instances did not change is not uploaded again) and drawn after
+//! the subject — what stands on the floor first, then the floor, most of which lies behind
+//! them, so its hidden texels fail the early depth test. Built when props are loaded; the
+//! variant for frames with the subsurface pass (two linear targets) only where the scene can
+//! reach a screen-space model.
+
+use super::{BuildCtx, Pass, Stage};
+use crate::camera::Frustum;
+use crate::render::layouts::Layouts;
+use crate::render::mesh::{instance_layout, vertex_layout};
+use crate::render::pipelines::{pipeline, targets, PipelineDevice};
+use crate::render::prepared::{Drawn, PassFrame, PreparedFrame};
+use crate::render::prop_gpu::MAX_INSTANCES;
+use crate::render::resources::Resources;
+use crate::scene::{FramePacket, PropInstance, PropKind};
+use crate::shader::{compose, ShaderDefs};
+
+/// One kind's instances this frame.
+struct Instances {
+    buffer: wgpu::Buffer,
+    /// What the buffer holds now (capacity reserved once).
+    uploaded: Vec<[[f32; 4]; 4]>,
+}
+
+pub struct PropsPass {
+    pipeline: wgpu::RenderPipeline,
+    /// For frames with the subsurface pass.
+    split: Option<wgpu::RenderPipeline>,
+    /// One per kind, in [`PropKind::ALL`] order.
+    instances: Vec<Instances>,
+    /// The placements last handed over, before culling (capacity reserved once).
+    placed: Vec<PropInstance>,
+    /// Scratch for one kind's visible matrices.
+    scratch: Vec<[[f32; 4]; 4]>,
+}
+
+/// The props' pipeline (`split`: the subsurface frame's two linear targets).
+fn prop_pipeline(
+    dev: PipelineDevice,
+    layouts: &Layouts,
+    format: wgpu::TextureFormat,
+    split: bool,
+) -> wgpu::RenderPipeline {
+    let device = dev.device;
+    let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some("prop"),
+        bind_group_layouts: &[Some(&layouts.frame), Some(&layouts.material)],
+        immediate_size: 0,
+    });
+    let defs = ShaderDefs::new().flag("INSTANCED");
+    let defs = if split {
+        defs.flag("SCREEN_SPACE")
+    } else {
+        defs
+    };
+    let source = compose("prop", &defs).expect("built-in shaders compose");
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some("prop"),
+        source: wgpu::ShaderSource::Wgsl(source.into()),
+    });
+    pipeline(
+        dev,
+        &layout,
+        &module,
+        &targets(format, split),
+        &[vertex_layout(), instance_layout()],
+        "prop",
+    )
+}
+
+impl Pass for PropsPass {
+    fn build(ctx: &BuildCtx) -> Option<Self> {
+        if !ctx.props {
+            return None;
+        }
+        let (device, layouts) = (ctx.device, ctx.layouts);
+        let instances = PropKind::ALL
+            .iter()
+            .map(|kind| Instances {
+                buffer: device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some(kind.file()),
+                    size: MAX_INSTANCES as u64 * 64,
+                    usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
+                    mapped_at_creation: false,
+                }),
+                uploaded: Vec::with_capacity(MAX_INSTANCES as usize),
+            })
+            .collect();
+        Some(Self {
+            pipeline: prop_pipeline(ctx.pipelines(), layouts, ctx.format, false),
+            split: ctx
+                .set
+                .needs_subsurface_pass()
+                .then(|| prop_pipeline(ctx.pipelines(), layouts, ctx.format, true)),
+            instances,
+            placed: Vec::with_capacity(PropKind::ALL.len() * MAX_INSTANCES as usize),
+            scratch: Vec::with_capacity(MAX_INSTANCES as usize),
+        })
+    }
+
+    fn stage(&self) -> Stage {
+        Stage::Scene
+    }
+
+    /// Takes the frame's placements (if it placed any) and uploads each kind's instances
+    /// inside the view; runs when the frame draws props and one is visible.
+    fn prepare(
+        &mut self,
+        queue: &wgpu::Queue,
+        packet: &FramePacket,
+        frame: &mut PreparedFrame,
+        res: &Resources,
+    ) -> PassFrame {
+        if let Some(placed) = packet.props {
+            self.placed.clear();
+            let room = self.placed.capacity();
+            self.placed.extend(placed.iter().take(room));
+        }
+        let frustum = Frustum::new(frame.view.view_proj);
+        for (k, kind) in PropKind::ALL.iter().enumerate() {
+            self.scratch.clear();
+            if let Some(prop) = res.props.iter().find(|p| p.kind == *kind) {
+                self.scratch.extend(
+                    self.placed
+                        .iter()
+                        .filter(|i| i.kind == *kind && prop.visible(&frustum, &i.transform))
+                        .take(MAX_INSTANCES as usize)
+                        .map(|i| i.transform.to_cols_array_2d()),
+                );
+            }
+            frame.visible_props[k] = self.scratch.len() as u32;
+            let slot = &mut self.instances[k];
+            if slot.uploaded != self.scratch {
+                slot.uploaded.clear();
+                slot.uploaded.extend_from_slice(&self.scratch);
+                if !self.scratch.is_empty() {
+                    queue.write_buffer(&slot.buffer, 0, bytemuck::cast_slice(&self.scratch));
+                }
+                frame.uploads += 1;
+            }
+        }
+        let visible = frame.visible_props.iter().any(|&n| n > 0);
+        PassFrame {
+            runs: frame.draw.props && visible,
+            steps: 0,
+        }
+    }
+
+    fn draw(
+        &self,
+        frame: &PreparedFrame,
+        res: &Resources,
+        pass: &mut wgpu::RenderPass<'_>,
+    ) -> Drawn {
+        let pipeline = match (frame.split, &self.split) {
+            (Some(_), Some(split)) => split,
+            (Some(_), None) => return Drawn::default(),
+            (None, _) => &self.pipeline,
+        };
+        pass.set_pipeline(pipeline);
+        let mut drawn = Drawn::default();
+        let is_floor = |k: &PropKind| *k == PropKind::FloorTile;
+        let standing = PropKind::ALL.iter().filter(|k| !is_floor(k));
+        for kind in standing.chain(PropKind::ALL.iter().filter(|k| is_floor(k))) {
+            let k = PropKind::ALL.iter().position(|x| x == kind).unwrap_or(0);
+            let count = frame.visible_props[k];
+            let Some(prop) = res.props.iter().find(|p| p.kind == *kind) else {
+                continue;
+            };
+            if count == 0 {
+                continue;
+            }
+            pass.set_vertex_buffer(1, self.instances[k].buffer.slice(..count as u64 * 64));
+            drawn.draw_calls += prop.draw(pass, count);
+            drawn.triangles += prop.triangles * count;
+        }
+        drawn
+    }
+}

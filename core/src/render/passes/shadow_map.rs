@@ -1,0 +1,195 @@
+//! The key light's shadow map: the subject (and a measurement scene's occluder) drawn
+//! depth-only from the light once per frame, before the scene; every shading model reads the
+//! map through `light_visible` in `shaders/common.wgsl` (one bilinear depth comparison). The
+//! light's frustum is the frame's [`ShadowView`](crate::render::ShadowView); the map itself is
+//! one of the renderer's light maps (`light_maps.rs`). Built once something casts.
+
+use super::{BuildCtx, Pass, Stage};
+use crate::render::layouts;
+use crate::render::light_maps::{depth_pass, SHADOW_FORMAT};
+use crate::render::mesh::vertex_layout;
+use crate::render::pipelines::PipelineDevice;
+use crate::render::prepared::{Drawn, PassFrame, PreparedFrame};
+use crate::render::resources::Resources;
+use crate::scene::FramePacket;
+use crate::shader::{compose, ShaderDefs};
+
+/// The composed caster shader (depth only).
+pub fn caster_shader_source() -> String {
+    compose("shadow_caster", &ShaderDefs::new()).expect("built-in shaders compose")
+}
+
+pub struct ShadowMapPass {
+    skinned: wgpu::RenderPipeline,
+    /// Where a measurement scene sets an occluder.
+    occluder: Option<wgpu::RenderPipeline>,
+    caster_buffer: wgpu::Buffer,
+    caster_group: wgpu::BindGroup,
+}
+
+fn depth_only(
+    dev: PipelineDevice,
+    layout: &wgpu::PipelineLayout,
+    module: &wgpu::ShaderModule,
+    entry: &str,
+    buffers: &[Option<wgpu::VertexBufferLayout<'_>>],
+) -> wgpu::RenderPipeline {
+    dev.device
+        .create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("shadow caster"),
+            layout: Some(layout),
+            vertex: wgpu::VertexState {
+                module,
+                entry_point: Some(entry),
+                compilation_options: Default::default(),
+                buffers,
+            },
+            // Both faces: thin parts (ears, fingers, the occluder blade) cast from either side.
+            primitive: wgpu::PrimitiveState {
+                topology: wgpu::PrimitiveTopology::TriangleList,
+                cull_mode: None,
+                ..Default::default()
+            },
+            depth_stencil: Some(wgpu::DepthStencilState {
+                format: SHADOW_FORMAT,
+                depth_write_enabled: Some(true),
+                depth_compare: Some(wgpu::CompareFunction::Less),
+                stencil: Default::default(),
+                // Slope-scaled: surfaces grazing the light move back by more.
+                bias: wgpu::DepthBiasState {
+                    constant: 2,
+                    slope_scale: 1.5,
+                    clamp: 0.0,
+                },
+            }),
+            multisample: Default::default(),
+            fragment: None,
+            multiview_mask: None,
+            cache: dev.cache,
+        })
+}
+
+impl Pass for ShadowMapPass {
+    fn build(ctx: &BuildCtx) -> Option<Self> {
+        ctx.light_maps?;
+        let device = ctx.device;
+        let caster_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("shadow caster"),
+            entries: &[layouts::uniform(0, wgpu::ShaderStages::VERTEX)],
+        });
+        let empty = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("empty"),
+            entries: &[],
+        });
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("shadow caster"),
+            source: wgpu::ShaderSource::Wgsl(caster_shader_source().into()),
+        });
+        let skinned_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("shadow caster"),
+            bind_group_layouts: &[
+                Some(&caster_layout),
+                Some(&empty),
+                Some(&ctx.layouts.skinned),
+            ],
+            immediate_size: 0,
+        });
+        let skinned = depth_only(
+            ctx.pipelines(),
+            &skinned_layout,
+            &module,
+            "vs_skinned",
+            &[Some(vertex_layout())],
+        );
+        let occluder = ctx.occluder.then(|| {
+            let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some("shadow occluder"),
+                bind_group_layouts: &[Some(&caster_layout)],
+                immediate_size: 0,
+            });
+            depth_only(
+                ctx.pipelines(),
+                &layout,
+                &module,
+                "vs_occluder",
+                &[Some(wgpu::VertexBufferLayout {
+                    array_stride: 12,
+                    step_mode: wgpu::VertexStepMode::Vertex,
+                    attributes: &wgpu::vertex_attr_array![0 => Float32x3],
+                })],
+            )
+        });
+        let caster_buffer = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("shadow caster"),
+            size: 64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let caster_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("shadow caster"),
+            layout: &caster_layout,
+            entries: &[wgpu::BindGroupEntry {
+                binding: 0,
+                resource: caster_buffer.as_entire_binding(),
+            }],
+        });
+        Some(Self {
+            skinned,
+            occluder,
+            caster_buffer,
+            caster_group,
+        })
+    }
+
+    fn stale(&self, ctx: &BuildCtx) -> bool {
+        ctx.occluder && self.occluder.is_none()
+    }
+
+    fn stage(&self) -> Stage {
+        Stage::Light
+    }
+
+    /// Runs when the frame's shadow view says a map is drawn; writes the light's matrix.
+    fn prepare(
+        &mut self,
+        queue: &wgpu::Queue,
+        _packet: &FramePacket,
+        frame: &mut PreparedFrame,
+        _res: &Resources,
+    ) -> PassFrame {
+        let runs = frame.shadow.drawn;
+        if runs {
+            let m = frame.shadow.view_proj.to_cols_array();
+            queue.write_buffer(&self.caster_buffer, 0, bytemuck::cast_slice(&m));
+            frame.uploads += 1;
+        }
+        PassFrame { runs, steps: 0 }
+    }
+
+    /// The depth-only pass: the subject if it casts and is drawn, the occluder.
+    fn encode(
+        &self,
+        frame: &PreparedFrame,
+        res: &Resources,
+        encoder: &mut wgpu::CommandEncoder,
+    ) -> Drawn {
+        let Some(maps) = &res.light_maps else {
+            return Drawn::default();
+        };
+        let mut pass = depth_pass(encoder, &maps.shadow_target, "shadow map");
+        pass.set_bind_group(0, &self.caster_group, &[]);
+        let mut drawn = Drawn::default();
+        let subject = res.subjects.active().filter(|_| frame.draw.character);
+        if let (Some(subject), true) = (subject, res.subject_casts) {
+            pass.set_pipeline(&self.skinned);
+            drawn.draw_calls += subject.gpu.draw(&mut pass);
+        }
+        if let (Some(o), Some(pipeline)) = (&res.occluder, &self.occluder) {
+            pass.set_pipeline(pipeline);
+            pass.set_vertex_buffer(0, o.vertices.slice(..));
+            pass.draw(0..o.count, 0..1);
+            drawn.draw_calls += 1;
+        }
+        drawn
+    }
+}

@@ -1,0 +1,111 @@
+//! A frame as the renderer prepared it ([`PreparedFrame`]: plain data, worked out once by
+//! `Renderer::prepare`) and what its passes record into ([`PassCtx`]). Encoding reads only
+//! these two: no cell, no lock, no call back into whoever made the frame.
+
+use super::passes::PASS_COUNT;
+use super::shadow_view::ShadowView;
+use super::targets::Targets;
+use super::timer::PassTimer;
+use super::FrameUniform;
+use crate::scene::{DrawSet, FrameView, PropKind};
+use crate::shading::ShadingModel;
+
+/// What one pass does in a frame, decided when the frame is prepared.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct PassFrame {
+    /// Whether the pass records anything this frame.
+    pub runs: bool,
+    /// A count the pass chose for this frame (the penumbra map's jump passes); 0 for most.
+    pub steps: u32,
+}
+
+/// The subject drawn this frame and the shading model its skin is drawn with.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SubjectDraw {
+    /// Its renderer slot (0: the character).
+    pub slot: usize,
+    /// Its skin's shading model; `None`: the unlit baseline.
+    pub shading: Option<ShadingModel>,
+}
+
+/// Everything the passes need to record one frame, worked out once by `Renderer::prepare`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PreparedFrame {
+    /// The target's size in pixels.
+    pub size: (u32, u32),
+    pub view: FrameView,
+    pub draw: DrawSet,
+    /// The subject drawn (`None`: no subject this frame).
+    pub subject: Option<SubjectDraw>,
+    /// The key light's shadow map: its frustum, and whether it is drawn this frame.
+    pub shadow: ShadowView,
+    /// Instances of each prop kind inside the view ([`PropKind::ALL`] order).
+    pub visible_props: [u32; PropKind::ALL.len()],
+    /// The screen-space model whose subsurface pass ends this frame (`None`: one pass).
+    pub split: Option<ShadingModel>,
+    /// The frame uniform as written for this frame.
+    pub uniform: FrameUniform,
+    /// What each pass does this frame (`passes::NAMES` order).
+    pub passes: [PassFrame; PASS_COUNT],
+    /// Buffer writes made while preparing it.
+    pub uploads: u32,
+}
+
+impl PreparedFrame {
+    /// What pass `slot` does this frame.
+    pub fn pass(&self, slot: usize) -> PassFrame {
+        self.passes[slot]
+    }
+}
+
+/// Where a frame's passes record: the encoder, the frame's per-size targets (MSAA colour and
+/// depth), the output the last pass resolves into and, when the frame is timed, the timer
+/// whose queries bracket the scene's passes.
+pub struct PassCtx<'a> {
+    pub encoder: &'a mut wgpu::CommandEncoder,
+    pub targets: &'a Targets,
+    pub output: &'a wgpu::TextureView,
+    pub timer: Option<&'a PassTimer>,
+}
+
+/// Counts for one encoded frame.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct RenderStats {
+    pub draw_calls: u32,
+    pub triangles: u32,
+    /// Draw calls per pass (`passes::NAMES` order).
+    pub passes: [u32; PASS_COUNT],
+}
+
+/// What a pass recorded: draw calls and triangles.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Drawn {
+    pub draw_calls: u32,
+    pub triangles: u32,
+}
+
+impl Drawn {
+    /// `n` draw calls of no counted triangles (full-screen passes, the UI).
+    pub fn calls(n: u32) -> Self {
+        Self {
+            draw_calls: n,
+            triangles: 0,
+        }
+    }
+}
+
+impl std::ops::AddAssign for Drawn {
+    fn add_assign(&mut self, o: Self) {
+        self.draw_calls += o.draw_calls;
+        self.triangles += o.triangles;
+    }
+}
+
+impl RenderStats {
+    /// Adds what pass `slot` recorded.
+    pub fn add(&mut self, slot: usize, drawn: Drawn) {
+        self.passes[slot] += drawn.draw_calls;
+        self.draw_calls += drawn.draw_calls;
+        self.triangles += drawn.triangles;
+    }
+}

@@ -1,0 +1,147 @@
+//! The key light's shadow frustum for a frame: fitted to the casters' bounding sphere, so the
+//! map's texels land where shadows can fall — a shadow of something inside the sphere lies
+//! inside the cone of rays through it, whatever receives it. A light far away compared with
+//! the sphere (a measurement scene's directional light) gets an orthographic frustum. Plain
+//! data: `Renderer::prepare` fits it, the shadow-map pass draws from it and receivers read it
+//! through the frame uniform.
+
+use glam::{Mat4, Vec3};
+
+/// A light farther than this many sphere radii gets an orthographic frustum.
+const ORTHOGRAPHIC_BEYOND: f32 = 20.0;
+/// Normal offset and depth bias, in texels of the map at the casters.
+const NORMAL_OFFSET_TEXELS: f32 = 0.5;
+const DEPTH_BIAS_TEXELS: f32 = 1.0;
+
+/// What receivers need of this frame's shadow map (the `shadow*` members of the frame uniform).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ShadowView {
+    /// World → the map's clip space (depth 0..1).
+    pub view_proj: Mat4,
+    /// Whether a map was drawn this frame (something casts).
+    pub drawn: bool,
+    /// One texel's world size at the casters' centre (m).
+    pub texel_m: f32,
+    /// The depth bias in the map's depth units.
+    pub bias: f32,
+    /// Depth units per metre along the light, at the casters' centre.
+    pub depth_per_m: f32,
+    /// Texels per side.
+    pub size: u32,
+}
+
+impl ShadowView {
+    /// No map: every point is lit.
+    pub const NONE: Self = Self {
+        view_proj: Mat4::IDENTITY,
+        drawn: false,
+        texel_m: 0.0,
+        bias: 0.0,
+        depth_per_m: 0.0,
+        size: 1,
+    };
+
+    /// The frustum of a light at `light` around the sphere (`centre`, `radius`), for a map of
+    /// `size`² texels. A light inside (or on) the sphere casts no shadow map: [`Self::NONE`].
+    pub fn fit(light: Vec3, centre: Vec3, radius: f32, size: u32) -> Self {
+        let to_light = light - centre;
+        let d = to_light.length();
+        if !(d.is_finite() && radius.is_finite() && radius > 0.0) || d <= radius * 1.05 {
+            return Self::NONE;
+        }
+        let dir = to_light / d;
+        let up = if dir.y.abs() > 0.99 { Vec3::Z } else { Vec3::Y };
+        let size = size.max(1);
+        if d > ORTHOGRAPHIC_BEYOND * radius {
+            // Parallel rays: look from 2r away, depth over the sphere's 2r (linear).
+            let eye = centre + dir * (2.0 * radius);
+            let view = glam::camera::rh::view::look_at_mat4(eye, centre, up);
+            let proj = glam::camera::rh::proj::directx::orthographic(
+                -radius,
+                radius,
+                -radius,
+                radius,
+                radius,
+                3.0 * radius,
+            );
+            let texel_m = 2.0 * radius / size as f32;
+            return Self {
+                view_proj: proj * view,
+                drawn: true,
+                texel_m,
+                bias: DEPTH_BIAS_TEXELS * texel_m / (2.0 * radius),
+                depth_per_m: 1.0 / (2.0 * radius),
+                size,
+            };
+        }
+        let half_angle = (radius / d).asin();
+        let (near, far) = (d - radius, d + radius);
+        let view = glam::camera::rh::view::look_at_mat4(light, centre, up);
+        let proj = glam::camera::rh::proj::directx::perspective(2.0 * half_angle, 1.0, near, far);
+        let texel_m = 2.0 * d * half_angle.tan() / size as f32;
+        // Depth z = far (1 − near/d')/(far − near): dz/dd' = far·near/((far − near) d'²).
+        let dz_dd = far * near / ((far - near) * d * d);
+        Self {
+            view_proj: proj * view,
+            drawn: true,
+            texel_m,
+            bias: DEPTH_BIAS_TEXELS * texel_m * dz_dd,
+            depth_per_m: dz_dd,
+            size,
+        }
+    }
+
+    /// How far receivers move their test point off the surface (m): half a texel.
+    pub fn normal_offset_m(&self) -> f32 {
+        NORMAL_OFFSET_TEXELS * self.texel_m
+    }
+
+    /// The map's width at the casters (m).
+    pub fn width_m(&self) -> f32 {
+        self.texel_m * self.size as f32
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn project(v: &ShadowView, p: Vec3) -> Vec3 {
+        let q = v.view_proj * p.extend(1.0);
+        q.truncate() / q.w
+    }
+
+    #[test]
+    fn the_frustum_holds_the_casters_sphere() {
+        for (light, r) in [
+            (Vec3::new(1.5, 3.0, 2.5), 1.0),
+            (Vec3::new(0.0, 1000.0, 0.0), 0.1),
+            (Vec3::new(700.0, 700.0, 0.0), 0.2),
+        ] {
+            let v = ShadowView::fit(light, Vec3::ZERO, r, 1024);
+            assert!(v.drawn);
+            let toward = light.normalize();
+            let side = toward.any_orthonormal_vector();
+            // The sphere's nearest and farthest points and a point on its rim.
+            for p in [toward * r, -toward * r, side * r * 0.999] {
+                let n = project(&v, p);
+                assert!(
+                    n.x.abs() <= 1.0 + 1e-4 && n.y.abs() <= 1.0 + 1e-4,
+                    "{p} → {n}"
+                );
+                assert!((-1e-4..=1.0 + 1e-4).contains(&n.z), "{p} → {n}");
+            }
+            // Nearer the light is smaller depth.
+            assert!(project(&v, toward * r * 0.5).z < project(&v, -toward * r * 0.5).z);
+            assert!(v.texel_m > 0.0 && v.bias > 0.0 && v.bias < 0.01);
+        }
+    }
+
+    #[test]
+    fn a_light_inside_the_casters_casts_no_map() {
+        let v = ShadowView::fit(Vec3::new(0.1, 0.0, 0.0), Vec3::ZERO, 1.0, 1024);
+        assert!(!v.drawn);
+        assert_eq!(v.normal_offset_m(), 0.0);
+        assert!(!ShadowView::fit(Vec3::ONE, Vec3::ZERO, f32::NAN, 1024).drawn);
+    }
+}

@@ -1,0 +1,164 @@
+//! GPU resources of a skinned subject (the character, the showroom's head): meshes, one joint
+//! palette per skin (group 2), one material per primitive (group 3: `material_gpu.rs`), each
+//! part drawn as skin or as a standard material by its material's role (`scene::Roles`).
+//! Created once at load; the shading models' constants are the renderer's
+//! ([`super::model_gpu`]), shared by every subject.
+
+use glam::Mat4;
+
+use super::layouts::Layouts;
+use super::material_gpu::{MaterialGpu, ModelTextures};
+use super::mesh::GpuMesh;
+use crate::anim::{joint_palette, Pose};
+use crate::asset::{Model, MAX_JOINTS};
+use crate::scene::{Role, Roles};
+
+/// One primitive: its mesh, its skin's palette (an index into the subject's skins) and its
+/// material.
+pub struct Part {
+    mesh: GpuMesh,
+    skin: usize,
+    pub material: MaterialGpu,
+    pub triangles: u32,
+}
+
+struct SkinGpu {
+    skin: usize,
+    buffer: wgpu::Buffer,
+    group: wgpu::BindGroup,
+    /// CPU scratch for the palette (reused every frame, no allocation).
+    palette: Vec<Mat4>,
+}
+
+pub struct SkinnedGpu {
+    parts: Vec<Part>,
+    skins: Vec<SkinGpu>,
+    /// Triangles drawn per frame.
+    pub triangles: u32,
+    /// Some skin part has a normal map: its model's normal-mapped pipelines are needed.
+    pub normal_mapped: bool,
+    /// Some skin part has none.
+    pub plain: bool,
+}
+
+impl SkinnedGpu {
+    /// Uploads every skinned mesh of `model`, its materials drawn as `roles` says. Errors if
+    /// the glTF has no skinned mesh.
+    pub fn new(
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        (layouts, sampler): (&Layouts, &wgpu::Sampler),
+        model: &Model,
+        roles: &Roles,
+    ) -> Result<Self, String> {
+        let palette_size = (MAX_JOINTS * 64) as u64;
+        let mut skins: Vec<SkinGpu> = Vec::new();
+        let mut parts = Vec::new();
+        let textures = ModelTextures::upload(device, queue, model);
+        for node in &model.nodes {
+            let (Some(mesh), Some(skin)) = (node.mesh, node.skin) else {
+                continue;
+            };
+            let slot = match skins.iter().position(|s| s.skin == skin) {
+                Some(i) => i,
+                None => {
+                    let buffer = device.create_buffer(&wgpu::BufferDescriptor {
+                        label: Some("joint palette"),
+                        size: palette_size,
+                        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                        mapped_at_creation: false,
+                    });
+                    let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                        label: Some("joint palette"),
+                        layout: &layouts.skinned,
+                        entries: &[wgpu::BindGroupEntry {
+                            binding: 0,
+                            resource: buffer.as_entire_binding(),
+                        }],
+                    });
+                    skins.push(SkinGpu {
+                        skin,
+                        buffer,
+                        group,
+                        palette: vec![Mat4::IDENTITY; model.skins[skin].joints.len()],
+                    });
+                    skins.len() - 1
+                }
+            };
+            for prim in &model.meshes[mesh].primitives {
+                let material = prim.material.and_then(|m| model.materials.get(m));
+                let role = roles.role(prim.material);
+                parts.push(Part {
+                    mesh: GpuMesh::new(device, prim, "character"),
+                    skin: slot,
+                    material: MaterialGpu::new(
+                        device,
+                        (layouts, sampler),
+                        &textures,
+                        material,
+                        role,
+                    ),
+                    triangles: prim.indices.len() as u32 / 3,
+                });
+            }
+        }
+        if parts.is_empty() {
+            return Err(format!(
+                "{}: no skinned mesh to render as the character",
+                model.source
+            ));
+        }
+        let skin_parts = || parts.iter().filter(|p| p.material.role != Role::Standard);
+        Ok(Self {
+            triangles: parts.iter().map(|p| p.triangles).sum(),
+            normal_mapped: skin_parts().any(|p| p.material.normal_mapped),
+            plain: skin_parts().any(|p| !p.material.normal_mapped),
+            parts,
+            skins,
+        })
+    }
+
+    /// The parts, in the file's order.
+    pub fn parts(&self) -> &[Part] {
+        &self.parts
+    }
+
+    /// Computes the joint palettes for `pose` placed at `world` and uploads them; returns
+    /// the uploads (one per skin).
+    pub fn update_pose(
+        &mut self,
+        queue: &wgpu::Queue,
+        model: &Model,
+        pose: &Pose,
+        world: Mat4,
+    ) -> u32 {
+        for skin in &mut self.skins {
+            joint_palette(model, skin.skin, pose, &mut skin.palette);
+            for m in &mut skin.palette {
+                *m = world * *m;
+            }
+            queue.write_buffer(&skin.buffer, 0, bytemuck::cast_slice(&skin.palette));
+        }
+        self.skins.len() as u32
+    }
+
+    /// Draws every part with the pipeline bound (group 2: the palette; group 3: the
+    /// material): depth-only passes. Returns the draw calls.
+    pub fn draw(&self, pass: &mut wgpu::RenderPass<'_>) -> u32 {
+        for part in &self.parts {
+            self.draw_part(pass, part, false);
+        }
+        self.parts.len() as u32
+    }
+
+    /// Draws `part` (its palette at group 2 and, with `material`, its material at group 3).
+    pub fn draw_part(&self, pass: &mut wgpu::RenderPass<'_>, part: &Part, material: bool) {
+        pass.set_bind_group(2, &self.skins[part.skin].group, &[]);
+        if material {
+            pass.set_bind_group(3, &part.material.group, &[]);
+        }
+        pass.set_vertex_buffer(0, part.mesh.vertices.slice(..));
+        pass.set_index_buffer(part.mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
+        pass.draw_indexed(0..part.mesh.index_count, 0, 0..1);
+    }
+}
