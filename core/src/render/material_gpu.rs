@@ -65,7 +65,7 @@ impl MaterialUniform {
 }
 
 /// How a standard material's pipeline differs: blended, masked, both faces drawn.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct Variant {
     pub blend: bool,
     pub mask: bool,
@@ -79,16 +79,6 @@ impl Variant {
             mask: matches!(m.alpha_mode, AlphaMode::Mask { .. }),
             double_sided: m.double_sided,
         })
-    }
-}
-
-impl Default for Variant {
-    fn default() -> Self {
-        Self {
-            blend: false,
-            mask: false,
-            double_sided: false,
-        }
     }
 }
 
