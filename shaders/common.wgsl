@@ -1,5 +1,7 @@
 // Shared by every pass: the per-frame uniform, the shading surface, light and tone mapping.
 
+#import consts
+
 const PI: f32 = 3.14159265358979;
 const INV_PI: f32 = 0.318309886183791;
 
@@ -70,8 +72,6 @@ struct Surface {
     curvature_radius: f32,
 };
 
-const FLAT_RADIUS_M: f32 = 1e6;
-
 fn safe_normalize(v: vec3<f32>, fallback: vec3<f32>) -> vec3<f32> {
     let len2 = dot(v, v);
     if (len2 < 1e-24) {
@@ -134,7 +134,7 @@ fn make_surface(pos: vec3<f32>, normal: vec3<f32>, tangent: vec4<f32>, albedo: v
     s.b = cross(s.n, s.t) * handedness;
     s.v = safe_normalize(frame.camera_pos - pos, s.n);
     let to_light = frame.light_pos - pos;
-    s.light_dist = max(length(to_light), 1e-3);
+    s.light_dist = max(length(to_light), LIGHT_D_MIN_M);
     s.l = safe_normalize(to_light, s.n);
     s.albedo = albedo;
     s.pigmented = false;

@@ -45,6 +45,7 @@ fn conformance_shade(@builtin(global_invocation_id) id: vec3<u32>) {
     // The f64 references shade the medium itself (no pigment).
     s.pigmented = false;
     s.thickness = max(x.albedo.w, 0.0);
+    s.curvature_radius = FLAT_RADIUS_M;
     conformance_out[2u * i] = vec4<f32>(shade(s), 0.0);
     conformance_out[2u * i + 1u] = vec4<f32>(conformance_probe(s, x.probe.x), 0.0);
 }

@@ -61,6 +61,8 @@ pub struct GameArgs {
     /// writable before the window opens).
     #[arg(long)]
     pub settings: Option<PathBuf>,
+    #[command(flatten)]
+    pub character: args::CharacterArgs,
 }
 
 /// The showroom demo in a window (`dermis demo`).

@@ -81,13 +81,14 @@ pub fn run_game(args: GameArgs) -> Result<(), String> {
     // The assets load while the window and the device are made; the showroom's scanned head
     // after them (its subject option appears where it loads).
     let load = GameLoad::start(GameSetup {
-        assets_dir: crate::paths::assets_dir(),
         character: args.window.model.clone(),
         seed: args.seed,
         settings: game_settings_path(&args),
         autoplay: args.autoplay,
         shading: args.shading,
-        head: true,
+        skin: args.character.skin.clone(),
+        clips: args.character.clips(),
+        ..GameSetup::new(crate::paths::assets_dir())
     });
     run(args.window, Mode::Loading(Some(load)))
 }

@@ -99,6 +99,42 @@ fn out_of_range_clip() {
     );
 }
 
+/// A user's character with a skin choice or a clip its file lacks: one line naming what is
+/// missing and what the file has, before any window or GPU work.
+#[test]
+fn users_character_bad_choices() {
+    let woman = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../shared/assets-external/QuaterniusWomanTankTop/WomanTankTop.glb");
+    let woman = woman.to_str().unwrap();
+    let out = tmp_dir("users_character").join("x.png");
+    let out = out.to_str().unwrap();
+    let render = |extra: &[&str]| {
+        let mut args = vec!["render", "--model", woman, "--out", out];
+        args.extend_from_slice(extra);
+        args.into_iter().map(str::to_string).collect::<Vec<_>>()
+    };
+    let cases: [(Vec<String>, &str); 4] = [
+        (render(&["--skin", "Bogus"]), "no material \"Bogus\""),
+        (render(&["--skin", "Skin=nopreset"]), "unknown preset"),
+        (
+            ["play", "--model", woman, "--run-clip", "nosuchclip"]
+                .map(str::to_string)
+                .to_vec(),
+            "no clip \"nosuchclip\" for run",
+        ),
+        (
+            ["--model", woman, "--death-clip", "nosuch"]
+                .map(str::to_string)
+                .to_vec(),
+            "no clip \"nosuch\" for death",
+        ),
+    ];
+    for (args, needle) in &cases {
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        assert_one_line_error(&args, needle);
+    }
+}
+
 #[test]
 fn profile_bad_input() {
     let h = |v: &'static str| ["profile", "--shading", "ward", "--light-height-mm", v];

@@ -4,7 +4,9 @@
 
 mod common;
 
-use dermis_core::anim::{bind_pose_bounds, clip_by_role, find_clips, fit_to_height, Role};
+use dermis_core::anim::{
+    bind_pose_bounds, clip_by_role, find_clips, fit_to_height, ClipRole as Role,
+};
 use dermis_core::asset::{load_gltf, Aabb, Model};
 use glam::Vec3;
 

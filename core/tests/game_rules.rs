@@ -364,6 +364,7 @@ fn settings_save_is_atomic_and_load_tolerates_missing_files() {
         shading: ShadingModel::Oss,
         best: 42,
         close_camera: true,
+        skins: vec![("WomanTankTop.glb".into(), "Skin=skin1".into())],
     };
     s.save(&path).unwrap();
     assert_eq!(Settings::load(&path), s);
@@ -371,6 +372,7 @@ fn settings_save_is_atomic_and_load_tolerates_missing_files() {
         shading: ShadingModel::Ward,
         best: 43,
         close_camera: false,
+        skins: Vec::new(),
     };
     s2.save(&path).unwrap();
     assert_eq!(Settings::load(&path), s2);

@@ -298,6 +298,61 @@ pub fn parse_material(s: &str) -> Result<dermis_core::shading::Material, String>
     })
 }
 
+/// `--skin`: `MATERIAL[=PRESET],…` or `none` (the material names are checked against the
+/// character once it is read).
+pub fn parse_skin(s: &str) -> Result<dermis_core::asset::skin::SkinChoice, String> {
+    s.parse()
+}
+
+/// A clip named on the command line: a clip's name, or `#N` for its index.
+pub fn parse_clip(s: &str) -> Result<String, String> {
+    let s = s.trim();
+    if s.is_empty() {
+        return Err("an empty clip name (a clip's name, or #N for its index)".into());
+    }
+    Ok(s.to_string())
+}
+
+/// What the game takes about a user's character besides its file: which of its materials
+/// are skin and which clips the runner plays.
+#[derive(clap::Args, Debug, Clone, Default)]
+pub struct CharacterArgs {
+    /// Which of the character's materials are skin: MATERIAL[=PRESET],… (a material by name or
+    /// #N; PRESET skin1 or white-coat) or `none`; default: what its file declares
+    /// (KHR_materials_volume_scatter), else materials named like skin. The game keeps it in
+    /// its settings for that file.
+    #[arg(long, value_parser = parse_skin)]
+    pub skin: Option<dermis_core::asset::skin::SkinChoice>,
+    /// The character's idle clip (its name or #N), over the search by name.
+    #[arg(long, value_parser = parse_clip)]
+    pub idle_clip: Option<String>,
+    /// Its run clip.
+    #[arg(long, value_parser = parse_clip)]
+    pub run_clip: Option<String>,
+    /// Its jump clip.
+    #[arg(long, value_parser = parse_clip)]
+    pub jump_clip: Option<String>,
+    /// Its death clip (the game-over screen).
+    #[arg(long, value_parser = parse_clip)]
+    pub death_clip: Option<String>,
+}
+
+impl CharacterArgs {
+    /// The clips named, by role.
+    pub fn clips(&self) -> Vec<(dermis_core::anim::ClipRole, String)> {
+        use dermis_core::anim::ClipRole as R;
+        [
+            (R::Idle, &self.idle_clip),
+            (R::Run, &self.run_clip),
+            (R::Jump, &self.jump_clip),
+            (R::Death, &self.death_clip),
+        ]
+        .into_iter()
+        .filter_map(|(r, n)| n.clone().map(|n| (r, n)))
+        .collect()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

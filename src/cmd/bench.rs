@@ -191,13 +191,8 @@ fn frame(
     // showroom's head after them) while the device is created.
     let first_model = ShadingModel::DEFAULT;
     let loading = GameLoad::start(GameSetup {
-        assets_dir: crate::paths::assets_dir(),
-        character: None,
-        seed: 1,
-        settings: None,
-        autoplay: false,
         shading: Some(first_model),
-        head: true,
+        ..GameSetup::new(crate::paths::assets_dir())
     });
     let mut gpu = Gpu::headless().map_err(|e| e.to_string())?;
     if let Some(dir) = &pipeline_cache {

@@ -2,12 +2,11 @@
 
 use std::path::PathBuf;
 
-use dermis_core::app::{GameFrame, GameGpu, Session};
+use dermis_core::app::{GameFrame, GameGpu, GameSetup, Session};
 use dermis_core::game::Screen;
 use dermis_core::render::{
     Clock, FrameDriver, FrameOutput, Gpu, LiveObjects, Offscreen, Output, OFFSCREEN_FORMAT,
 };
-use dermis_core::scene::SceneAssets;
 use dermis_core::shading::ShadingModel;
 use serde_json::json;
 
@@ -21,6 +20,12 @@ use dermis_core::heap::allocations;
 
 #[derive(clap::Args, Debug)]
 pub struct PlayArgs {
+    /// A glTF character instead of the project's own (fitted to the runner's height; its
+    /// clips found by name).
+    #[arg(long)]
+    pub model: Option<PathBuf>,
+    #[command(flatten)]
+    pub character: crate::cmd::args::CharacterArgs,
     /// Let the autoplay bot play (it starts runs and restarts after game over).
     #[arg(long)]
     pub autoplay: bool,
@@ -32,9 +37,6 @@ pub struct PlayArgs {
     pub seed: u64,
     #[arg(long, value_parser = parse_model, help = shading_help("Shading model of the character"))]
     pub shading: Option<ShadingModel>,
-    /// A glTF character instead of the project's own (loaded as the window loads it).
-    #[arg(long)]
-    pub model: Option<PathBuf>,
     /// Frame size WxH.
     #[arg(long, default_value = "1280x720", value_parser = parse_size, allow_hyphen_values = true)]
     pub size: (u32, u32),
@@ -71,18 +73,24 @@ pub fn run(args: PlayArgs) -> Result<(), String> {
     }
     let mut progress = Progress::new("play", args.frames);
     progress.begin("GPU device and pipelines");
-    let assets = SceneAssets::load(&crate::paths::assets_dir(), args.model.as_deref())
-        .map_err(|e| e.to_string())?;
+    // The character as the window loads it: its skin, its clips by name, no settings file.
+    let setup = GameSetup {
+        character: args.model.clone(),
+        seed: args.seed,
+        autoplay: args.autoplay,
+        shading: args.shading,
+        head: false,
+        skin: args.character.skin.clone(),
+        clips: args.character.clips(),
+        ..GameSetup::new(crate::paths::assets_dir())
+    };
+    let (assets, mut session) = setup.load()?;
     let gpu = Gpu::headless().map_err(|e| e.to_string())?;
     let (w, h) = args.size;
     let mut gg = GameGpu::new(&gpu, OFFSCREEN_FORMAT, &assets, ShadingModel::DEFAULT)?;
     // Every pipeline in place before the first measured frame.
     gg.finish_loading(&gpu);
     let target = Offscreen::new(&gpu, w, h);
-    let mut session = Session::new(&assets.character, args.seed, None, args.autoplay);
-    if let Some(m) = args.shading {
-        session.settings.set_shading_model(m);
-    }
     // `play` measures the chosen model: no tier scheduling.
     session.configure_governor(session.governor.config, false, false);
     // The game's fixed step makes results independent of the frame rate.

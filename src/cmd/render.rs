@@ -24,12 +24,17 @@ pub struct RenderArgs {
         help = shading_help("Shading model of the character")
     )]
     pub shading: ShadingModel,
-    /// Material preset (skin1 | white-coat).
-    #[arg(long, default_value = "skin1", value_parser = parse_material)]
-    pub material: Material,
+    /// The skin's optics: a preset (skin1 | white-coat); default: what the character's file
+    /// declares (KHR_materials_volume_scatter), else skin1.
+    #[arg(long, value_parser = parse_material)]
+    pub material: Option<Material>,
     /// glTF character (default: the project's own).
     #[arg(long)]
     pub model: Option<PathBuf>,
+    /// Which of the character's materials are skin: MATERIAL[=PRESET],… or `none` (default:
+    /// what its file declares, else materials named like skin).
+    #[arg(long, value_parser = crate::cmd::args::parse_skin)]
+    pub skin: Option<dermis_core::asset::skin::SkinChoice>,
     /// Animation clip index (checked against the model before any GPU work).
     #[arg(long, default_value_t = 0, value_parser = parse_index, allow_hyphen_values = true)]
     pub clip: usize,
@@ -79,8 +84,16 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
     if args.scene == "head" || args.export.is_some() {
         return super::render_head::run(&args);
     }
-    let assets = SceneAssets::load(&crate::paths::assets_dir(), args.model.as_deref())
-        .map_err(|e| e.to_string())?;
+    let assets = SceneAssets::load_chosen(
+        &crate::paths::assets_dir(),
+        args.model.as_deref(),
+        args.skin.as_ref(),
+    )
+    .map_err(|e| e.to_string())?;
+    let material = args
+        .material
+        .clone()
+        .unwrap_or_else(|| assets.roles.optics.clone());
     let clips = assets.character.animations.len();
     if args.clip >= clips.max(1) {
         return Err(format!(
@@ -100,7 +113,7 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
         time: args.time,
         light: args.light,
         props: !args.no_props,
-        ..Shot::new(args.shading, args.material.clone())
+        ..Shot::new(args.shading, material.clone())
     };
     progress.begin("rendering");
     if let Some(out) = &args.out {
@@ -118,7 +131,7 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
         "{}: {} {} {}x{} on {}",
         super::render_head::outputs(&args),
         args.shading,
-        args.material.name,
+        material.name,
         w,
         h,
         gpu.adapter_name()

@@ -22,6 +22,11 @@ pub fn outputs(args: &RenderArgs) -> String {
 }
 
 pub fn run(args: &RenderArgs) -> Result<(), String> {
+    // The head declares no optics: skin1's unless a preset is named.
+    let material = args
+        .material
+        .clone()
+        .unwrap_or_else(|| dermis_core::shading::material::DEFAULT_SKIN.clone());
     if args.scene != "head" {
         return Err("--export needs --scene head".into());
     }
@@ -29,11 +34,11 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
     if let Some(dir) = &args.export {
         super::args::check_out_dir(dir)?;
         let model = head::load(&assets, false).map_err(|e| e.to_string())?;
-        export::write(dir, &model, &args.material)?;
+        export::write(dir, &model, &material)?;
         println!(
             "{}: head.ply, scene.json ({}; {})",
             dir.display(),
-            args.material.name,
+            material.name,
             head::ATTRIBUTION
         );
         return Ok(());
@@ -44,7 +49,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
     let camera = head::camera();
     let position = args.light.unwrap_or_else(|| args.face_light.position());
     if let Some(out) = &args.out {
-        let mut r = HeadRenderer::new(&gpu, &model, &args.material, w, h, false)?;
+        let mut r = HeadRenderer::new(&gpu, &model, &material, w, h, false)?;
         let default = Light::default();
         let light = Light {
             position,
@@ -56,7 +61,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         r.image(&gpu, args.shading, &camera, light)?.save_png(out)?;
     }
     if let Some(hdr) = &args.hdr {
-        let mut r = HeadRenderer::new(&gpu, &model, &args.material, w, h, true)?;
+        let mut r = HeadRenderer::new(&gpu, &model, &material, w, h, true)?;
         let pixels = r.radiance(&gpu, args.shading, &camera, position, head::LIGHT_INTENSITY)?;
         FloatImage::new(w, h, pixels)?.save(hdr)?;
     }
@@ -64,7 +69,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         "{}: {} {} head {}x{} light at {:.3?} on {}\n{}",
         outputs(args),
         args.shading,
-        args.material.name,
+        material.name,
         w,
         h,
         Vec3::to_array(&position),

@@ -11,7 +11,7 @@ mod palette;
 mod pose;
 mod sample;
 
-pub use clips::{clip_by_role, find_clips, Clips, Role};
+pub use clips::{clip_by_role, find_clips, Clips, Role as ClipRole};
 pub use fit::{bind_pose_bounds, fit_to_height, Fit};
 pub use palette::{first_skinned_mesh, joint_palette, skin_positions};
 pub use pose::Pose;

@@ -6,7 +6,9 @@
 use std::path::PathBuf;
 use std::sync::mpsc;
 
-use super::Session;
+use super::{Session, Settings};
+use crate::anim::{find_clips, ClipRole};
+use crate::asset::skin::SkinChoice;
 use crate::scene::{HeadLoad, SceneAssets};
 use crate::shading::ShadingModel;
 
@@ -24,6 +26,29 @@ pub struct GameSetup {
     pub shading: Option<ShadingModel>,
     /// Whether to load the showroom's scanned head.
     pub head: bool,
+    /// Which of the character's materials are skin (`--skin`), over the choice saved for its
+    /// file (which this one replaces).
+    pub skin: Option<SkinChoice>,
+    /// Clips named on the command line (`--idle-clip` …), over the search by name.
+    pub clips: Vec<(ClipRole, String)>,
+}
+
+impl GameSetup {
+    /// The game's defaults for `assets_dir`: its own character, seed 1, no settings file,
+    /// the head.
+    pub fn new(assets_dir: PathBuf) -> Self {
+        Self {
+            assets_dir,
+            character: None,
+            seed: 1,
+            settings: None,
+            autoplay: false,
+            shading: None,
+            head: true,
+            skin: None,
+            clips: Vec::new(),
+        }
+    }
 }
 
 /// The assets and the session, as the loader thread made them.
@@ -59,33 +84,78 @@ impl GameLoad {
 }
 
 fn load(setup: GameSetup, tx: &mpsc::Sender<Result<Loaded, String>>) {
-    let assets = match SceneAssets::load(&setup.assets_dir, setup.character.as_deref()) {
-        Ok(assets) => assets,
-        Err(e) => {
-            let _ = tx.send(Err(e.to_string()));
-            return;
+    let loaded = setup.load();
+    let failed = loaded.is_err();
+    let head = loaded.as_ref().map(|(a, _)| a.head.clone()).ok();
+    let _ = tx.send(loaded);
+    if let (false, Some(head)) = (failed, head) {
+        head.finish(&setup.assets_dir);
+    }
+}
+
+impl GameSetup {
+    /// Loads the assets (the character's skin as the user chose or its file says, its clips
+    /// found by name) and makes the session, on this thread (the head is left to
+    /// [`HeadLoad::finish`]); one line naming what is wrong otherwise.
+    pub fn load(&self) -> Result<Loaded, String> {
+        prepare(self)
+    }
+}
+
+fn prepare(setup: &GameSetup) -> Result<Loaded, String> {
+    let default = setup.assets_dir.join(SceneAssets::CHARACTER);
+    let file = setup.character.as_deref().unwrap_or(&default);
+    let key = file
+        .file_name()
+        .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+    // The choice given now, else the one kept for this file (a kept one that no longer fits
+    // the file is dropped with a warning).
+    let kept = setup
+        .settings
+        .as_deref()
+        .map(Settings::load)
+        .unwrap_or_default();
+    let kept = kept
+        .skin_for(&key)
+        .and_then(|c| c.parse::<SkinChoice>().ok());
+    let given = setup.skin.is_some();
+    let choice = setup.skin.clone().or(kept);
+    let assets = match SceneAssets::load_chosen(
+        &setup.assets_dir,
+        setup.character.as_deref(),
+        choice.as_ref(),
+    ) {
+        Err(e) if !given && choice.is_some() => {
+            log::warn!("{key}: the skin choice kept in the settings no longer fits: {e}");
+            SceneAssets::load(&setup.assets_dir, setup.character.as_deref())
         }
-    };
+        other => other,
+    }
+    .map_err(|e| e.to_string())?;
+    let overrides: Vec<(ClipRole, &str)> =
+        setup.clips.iter().map(|(r, n)| (*r, n.as_str())).collect();
+    let clips = find_clips(&assets.character, &overrides, &[ClipRole::Run])?;
     let head = if setup.head {
         HeadLoad::pending()
     } else {
         HeadLoad::default()
     };
-    let assets = SceneAssets {
-        head: head.clone(),
-        ..assets
-    };
+    let assets = SceneAssets { head, ..assets };
     let mut session = Session::new(
         &assets.character,
         setup.seed,
-        setup.settings,
+        setup.settings.clone(),
         setup.autoplay,
     );
+    session.clips = clips;
     if let Some(m) = setup.shading {
         session.settings.set_shading_model(m);
     }
-    let _ = tx.send(Ok((assets, session)));
-    head.finish(&setup.assets_dir);
+    if let (Some(choice), true) = (&setup.skin, given) {
+        session.settings.set_skin(&key, &choice.to_string());
+        session.save_settings();
+    }
+    Ok((assets, session))
 }
 
 #[cfg(test)]
@@ -93,15 +163,7 @@ mod tests {
     use super::*;
 
     fn setup(dir: PathBuf) -> GameSetup {
-        GameSetup {
-            assets_dir: dir,
-            character: None,
-            seed: 1,
-            settings: None,
-            autoplay: false,
-            shading: None,
-            head: true,
-        }
+        GameSetup::new(dir)
     }
 
     #[test]

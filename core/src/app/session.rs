@@ -7,14 +7,14 @@
 
 use std::path::PathBuf;
 
-use glam::Vec3;
+use glam::{Mat4, Vec3};
 
 use super::showroom::{head_matrix, is_showroom, Subject};
 use super::{GameUi, Settings, Showroom, ShowroomHead};
-use crate::anim::Pose;
+use crate::anim::{bind_pose_bounds, find_clips, fit_to_height, Clips, Pose};
 use crate::asset::Model;
 use crate::camera::{CameraPose, FollowCamera, Frustum};
-use crate::game::{Bot, Game, Input, Screen, Swipe};
+use crate::game::{Bot, Clip, Game, Input, Screen, Swipe};
 use crate::governor::{Change, Governor, GovernorConfig, Needs, Tiers};
 use crate::scene::{
     DrawSet, FramePacket, FrameView, Light, PropInstance, SubjectPose, CHARACTER, EXPOSURE,
@@ -104,6 +104,11 @@ pub struct Session {
     pub needs: Needs,
     /// 0: the wide follow camera, 1: the close-up; in between while switching.
     close: f32,
+    /// The character's clip for each of the runner's [`Clip`]s (found by name).
+    pub clips: Clips,
+    /// Fits the character's file to the runner's height, feet on the ground
+    /// ([`crate::anim::fit_to_height`]): a 4.6 m export and a 30 cm one run the same lanes.
+    pub fit: Mat4,
 }
 
 impl Session {
@@ -154,6 +159,10 @@ impl Session {
             needs: Needs::default(),
             settings,
             close,
+            clips: find_clips(character, &[], &[]).unwrap_or_default(),
+            fit: bind_pose_bounds(character)
+                .and_then(|b| fit_to_height(b, CHARACTER.height))
+                .map_or(Mat4::IDENTITY, |f| f.matrix()),
         }
     }
 
@@ -276,7 +285,8 @@ impl Session {
         self.pending.swipe = Some(swipe);
     }
 
-    fn save_settings(&self) {
+    /// Writes the settings to their file, if the session has one (a failure is logged).
+    pub fn save_settings(&self) {
         if let Some(path) = &self.settings_path {
             if let Err(e) = self.settings.save(path) {
                 log::warn!("could not save settings to {}: {e}", path.display());
@@ -367,10 +377,13 @@ impl Session {
         let anim = self.game.anim_state();
         let mut first = true;
         for (k, &(clip, weight)) in anim.blend.iter().enumerate() {
-            let Some(c) = character.animations.get(clip) else {
+            let Some(c) = self.clip(clip).and_then(|i| character.animations.get(i)) else {
                 continue;
             };
-            let t = if c.duration > 0.0 {
+            let t = if clip == Clip::Death as usize {
+                // Played once, then held.
+                anim.time[k].min(c.duration.max(0.0))
+            } else if c.duration > 0.0 {
                 anim.time[k] % c.duration
             } else {
                 0.0
@@ -383,6 +396,21 @@ impl Session {
             }
         }
         self.pose.update_world(character);
+    }
+
+    /// The character's clip for the runner's clip `clip` ([`Clip`] as a number): the one found
+    /// for it, else (a character without one) the run for a jump, the idle for a death, and
+    /// the run's first frame for an idle.
+    fn clip(&self, clip: usize) -> Option<usize> {
+        use crate::anim::ClipRole as Role;
+        let c = &self.clips;
+        match clip {
+            x if x == Clip::Idle as usize => c.get(Role::Idle).or(c.get(Role::Run)),
+            x if x == Clip::Run as usize => c.get(Role::Run),
+            x if x == Clip::Jump as usize => c.get(Role::Jump).or(c.get(Role::Run)),
+            x if x == Clip::Death as usize => c.get(Role::Death).or(c.get(Role::Idle)),
+            _ => None,
+        }
     }
 
     /// What the showroom shows this frame: the head where it is offered, chosen and the
@@ -422,7 +450,7 @@ impl Session {
                 let pose = SubjectPose {
                     model: character,
                     pose: &self.pose,
-                    world: self.game.player_matrix(),
+                    world: self.game.player_matrix() * self.fit,
                 };
                 (0, self.character_visible.then_some(pose))
             }

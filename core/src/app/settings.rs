@@ -1,9 +1,10 @@
-//! Persistent settings: the chosen shading model, the best score and the play camera (the
-//! follow camera or its close-up), as a tiny `key=value` text file written atomically (temp
-//! file + rename).
+//! Persistent settings: the chosen shading model, the best score, the play camera (the
+//! follow camera or its close-up) and, per character file, which of its materials are skin
+//! (`--skin`), as a tiny `key=value` text file written atomically (temp file + rename).
 
 use std::path::Path;
 
+use crate::asset::skin::SkinChoice;
 use crate::shading::ShadingModel;
 
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -14,6 +15,9 @@ pub struct Settings {
     /// Play with the close-up camera (the runner large, its skin in view) rather than the
     /// wide follow camera.
     pub close_camera: bool,
+    /// The user's choice of skin materials per character file (its file name), as given
+    /// (`MATERIAL[=preset],…` or `none`): `skin.FILE=CHOICE` in the file.
+    pub skins: Vec<(String, String)>,
 }
 
 impl Default for Settings {
@@ -22,6 +26,7 @@ impl Default for Settings {
             shading: ShadingModel::DEFAULT,
             best: 0,
             close_camera: false,
+            skins: Vec::new(),
         }
     }
 }
@@ -36,13 +41,31 @@ impl Settings {
         self.shading = model;
     }
 
+    /// The skin choice kept for character file `file` (its file name).
+    pub fn skin_for(&self, file: &str) -> Option<&str> {
+        self.skins
+            .iter()
+            .find(|(f, _)| f == file)
+            .map(|(_, c)| c.as_str())
+    }
+
+    /// Keeps `choice` for character file `file`.
+    pub fn set_skin(&mut self, file: &str, choice: &str) {
+        self.skins.retain(|(f, _)| f != file);
+        self.skins.push((file.to_string(), choice.to_string()));
+    }
+
     pub fn to_text(&self) -> String {
-        format!(
+        let mut out = format!(
             "# dermis settings\nshading={}\nbest={}\ncamera={}\n",
             self.shading.name(),
             self.best,
             if self.close_camera { "close" } else { "follow" }
-        )
+        );
+        for (file, choice) in &self.skins {
+            out.push_str(&format!("skin.{file}={choice}\n"));
+        }
+        out
     }
 
     /// Parses `to_text` output. Never fails: unknown keys, malformed lines, unknown model
@@ -90,6 +113,12 @@ impl Settings {
                         "line {n}: `{shown}` ignored (camera is `follow` or `close`)"
                     )),
                 },
+                key if key.starts_with("skin.") && key.len() > 5 => {
+                    match value.parse::<SkinChoice>() {
+                        Ok(_) => s.set_skin(&key[5..], value),
+                        Err(e) => dropped.push(format!("line {n}: `{shown}` ignored ({e})")),
+                    }
+                }
                 _ => dropped.push(format!("line {n}: `{shown}` ignored (unknown key)")),
             }
         }

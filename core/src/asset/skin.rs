@@ -122,6 +122,25 @@ impl FromStr for SkinChoice {
     }
 }
 
+impl std::fmt::Display for SkinChoice {
+    /// The choice as it is written (`none`, or `MATERIAL[=PRESET],…`): what parses back.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        if self.entries.is_empty() {
+            return f.write_str("none");
+        }
+        for (i, e) in self.entries.iter().enumerate() {
+            if i > 0 {
+                f.write_str(",")?;
+            }
+            f.write_str(&e.material)?;
+            if let Some(p) = e.preset {
+                write!(f, "={p}")?;
+            }
+        }
+        Ok(())
+    }
+}
+
 /// Why a material is, or is not, skin.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Reason {

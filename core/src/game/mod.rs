@@ -58,12 +58,19 @@ pub enum Screen {
     GameOver,
 }
 
-/// Animation clips in the order the character's clip list uses.
+/// What the runner is doing, for its animation (the app maps each to one of the character's
+/// clips, found by name).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Clip {
     Idle = 0,
     Run = 1,
     Jump = 2,
+    /// After hitting an obstacle (the game-over screen), played once.
+    Death = 3,
+}
+
+impl Clip {
+    pub const ALL: [Clip; 4] = [Clip::Idle, Clip::Run, Clip::Jump, Clip::Death];
 }
 
 /// The character's animation blend: `blend[0]` fades out, `blend[1]` fades in; weights sum
@@ -109,7 +116,7 @@ struct Anim {
     to: Clip,
     /// Weight of `to`.
     t: f32,
-    times: [f32; 3],
+    times: [f32; 4],
 }
 
 pub struct Game {
@@ -162,7 +169,7 @@ impl Game {
                 from: Clip::Idle,
                 to: Clip::Idle,
                 t: 1.0,
-                times: [0.0; 3],
+                times: [0.0; 4],
             },
             pending: Input::NONE,
             paused: false,
@@ -359,8 +366,13 @@ impl Game {
         let target = match self.screen {
             Screen::Play if !self.player.grounded() => Clip::Jump,
             Screen::Play => Clip::Run,
-            _ => Clip::Idle,
+            Screen::GameOver => Clip::Death,
+            Screen::Main => Clip::Idle,
         };
+        if target == Clip::Death && self.anim.to != Clip::Death {
+            // Played from its start each time the runner falls.
+            self.anim.times[Clip::Death as usize] = 0.0;
+        }
         let a = &mut self.anim;
         if target != a.to {
             if target == a.from {
@@ -379,6 +391,7 @@ impl Game {
         a.times[Clip::Idle as usize] += TICK_DT;
         a.times[Clip::Run as usize] += TICK_DT * (self.player.speed / START_SPEED).max(0.5);
         a.times[Clip::Jump as usize] += TICK_DT;
+        a.times[Clip::Death as usize] += TICK_DT;
     }
 
     // ---- state ----

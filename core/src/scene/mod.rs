@@ -21,6 +21,7 @@ use std::sync::{Arc, OnceLock};
 use glam::{Mat4, Quat, Vec3};
 
 use crate::anim::{first_skinned_mesh, skin_positions, Pose};
+use crate::asset::skin::SkinChoice;
 use crate::asset::{load_gltf, load_gltf_slice, AssetError, Model};
 
 /// Everything the demo and the game load at start (nothing is read from disk later).
@@ -98,12 +99,30 @@ impl SceneAssets {
     pub const CHARACTER: &'static str = "character.glb";
 
     /// Loads `character` (or `assets/character.glb`) and every prop in `assets/props/` from
-    /// the file system (with the loader's size and file-type checks).
+    /// the file system (with the loader's size and file-type checks); the character's skin
+    /// as its file says (`asset::skin`, logged).
     pub fn load(assets_dir: &Path, character: Option<&Path>) -> Result<Self, AssetError> {
+        Self::load_chosen(assets_dir, character, None)
+    }
+
+    /// The same with the user's choice of skin materials (`--skin`); a choice naming a
+    /// material the file lacks is an error.
+    pub fn load_chosen(
+        assets_dir: &Path,
+        character: Option<&Path>,
+        skin: Option<&SkinChoice>,
+    ) -> Result<Self, AssetError> {
         let default = assets_dir.join(Self::CHARACTER);
-        let character = load_gltf(character.unwrap_or(&default))?;
+        let path = character.unwrap_or(&default);
+        let character = load_gltf(path)?;
+        let class = crate::asset::skin::classify(&character, skin).map_err(|e| {
+            let prefix = format!("{}: ", character.source);
+            let problem = e.strip_prefix(&prefix).unwrap_or(&e).to_string();
+            AssetError::new(path.display().to_string(), problem)
+        })?;
+        log::info!("{}", class.summary);
         Ok(Self {
-            roles: Roles::of(&character),
+            roles: Roles::classified(&character, &class),
             character,
             props: Self::props(&|path| load_gltf(&assets_dir.join(path)))?,
             head: HeadLoad::default(),

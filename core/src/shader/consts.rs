@@ -5,7 +5,7 @@
 use std::fmt::Write;
 
 use crate::asset::MAX_JOINTS;
-use crate::shading::{bake, edge_spread, preintegrated, subsurface};
+use crate::shading::{bake, edge_spread, preintegrated, subsurface, units};
 
 /// A shared constant's WGSL type and value.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -15,7 +15,7 @@ pub enum Const {
 }
 
 /// `(name, value, what it is)` of every shared constant.
-pub fn table() -> [(&'static str, Const, &'static str); 11] {
+pub fn table() -> [(&'static str, Const, &'static str); 13] {
     use preintegrated::{LUT_U, LUT_V, PENUMBRA_ROW, SLAB_SPAN, TEXTURE_ROWS};
     [
         (
@@ -72,6 +72,16 @@ pub fn table() -> [(&'static str, Const, &'static str); 11] {
             "PENUMBRA_SPAN_MM",
             Const::F32(edge_spread::SPAN_MM as f32),
             "the edge-spread row's reach either side of an edge, mm (edge_spread::SPAN_MM)",
+        ),
+        (
+            "LIGHT_D_MIN_M",
+            Const::F32(units::LIGHT_D_MIN_M as f32),
+            "the smallest light distance any model sees, m (shading::units::LIGHT_D_MIN_M)",
+        ),
+        (
+            "FLAT_RADIUS_M",
+            Const::F32(units::FLAT_RADIUS_M as f32),
+            "the radius of curvature of a flat or unknown surface, m (units::FLAT_RADIUS_M)",
         ),
     ]
 }

@@ -25,6 +25,9 @@ pub struct Pixel {
     pub thickness_m: f64,
     /// Ambient radiance (the Frame uniform's `ambient`).
     pub ambient: DVec3,
+    /// Radius of curvature of the surface [m] (`make_surface`, and so the conformance
+    /// harness: flat, [`units::FLAT_RADIUS_M`]).
+    pub curvature_radius_m: f64,
 }
 
 impl Pixel {
@@ -41,6 +44,7 @@ impl Pixel {
             albedo: DVec3::new(0.8, 0.6, 0.5),
             thickness_m: 0.1,
             ambient: DVec3::new(0.05, 0.04, 0.03),
+            curvature_radius_m: units::FLAT_RADIUS_M,
         }
     }
 
@@ -75,6 +79,7 @@ impl Pixel {
             albedo: v(self.albedo),
             thickness_m: s(self.thickness_m),
             ambient: v(self.ambient),
+            curvature_radius_m: s(self.curvature_radius_m),
         }
     }
 }

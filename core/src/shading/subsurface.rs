@@ -287,9 +287,9 @@ fn spread(p: &Packed, px: &Pixel) -> DVec3 {
     DVec3::from_array(std::array::from_fn(|c| {
         let d = to_light - dir * (delta[c] / p.mm_per_m);
         let r = d.length().max(1e-3);
-        // The entry point's normal turns toward the light by δ/ρ_c (at most 1 rad); the
-        // conformance harness's surface has curvature radius 0.
-        let tilt = (delta[c] / 1e-3).min(1.0);
+        // On a curved surface the entry point's normal turns toward the light by δ/ρ_c (at
+        // most 1 rad).
+        let tilt = (delta[c] / (px.curvature_radius_m * p.mm_per_m).max(1e-3)).min(1.0);
         let tilted = (n + dir * tilt).normalize();
         let mu = (tilted.dot(d) / r).max(0.0);
         let area = if rho > 1e-6 {

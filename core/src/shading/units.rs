@@ -31,3 +31,6 @@ pub const OSS_LIGHT_D_MIN_M: f64 = 0.1;
 
 /// Smallest light distance any model sees [m] (the light never sits inside the skin).
 pub const LIGHT_D_MIN_M: f64 = 1.0e-3;
+
+/// The radius of curvature [m] a surface has where it is flat or unknown.
+pub const FLAT_RADIUS_M: f64 = 1.0e6;

@@ -55,12 +55,12 @@ pub fn height_fade(height: f32) -> (f32, f32) {
 }
 
 impl Blob {
-    /// The character's blob for its world matrix (feet at the origin of the model).
+    /// The character's blob for its world matrix (feet at the origin of the model): the
+    /// bound is of a character at the runner's height, whatever scale fitted its file to it.
     pub fn character(bound: &CharacterBound, world: Mat4) -> Self {
         let feet = world.w_axis.truncate();
-        let scale = world.x_axis.truncate().length();
         let (dark, size) = height_fade(feet.y - GROUND_Y);
-        let r = bound.radius * scale * size;
+        let r = bound.radius * size;
         Self {
             centre: [feet.x, GROUND_Y + LIFT, feet.z, CHARACTER_DARKNESS * dark],
             axes: [1.0, 0.0, 0.0, 0.0],
