@@ -9,6 +9,7 @@
 mod android_test;
 mod apk;
 mod assets;
+mod build_features;
 mod device_run;
 mod textures;
 mod ui_atlas;
