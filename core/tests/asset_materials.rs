@@ -9,7 +9,7 @@ mod common;
 use dermis_core::asset::skin::{self, Reason, SkinChoice};
 use dermis_core::asset::{load_gltf, load_gltf_slice, AlphaMode, Model};
 use dermis_core::shading::albedo::single_scatter_albedo;
-use dermis_core::shading::material::{Origin, SKIN1, WHITE_COAT};
+use dermis_core::shading::material::{Origin, PRESET_MATCH, SKIN1, WHITE_COAT};
 
 fn load(name: &str) -> Model {
     let path = common::data_dir().join("materials").join(name);
@@ -314,7 +314,8 @@ fn the_external_characters_are_classified_as_documented() {
 }
 
 /// The project's character declares its skin with the extensions, and reading them back gives
-/// skin1 within 1e-3 (then exactly: within that tolerance the preset's values are taken, so
+/// skin1 within 1e-3 as authored, within PRESET_MATCH from its block encodings (then exactly:
+/// within that tolerance the preset's values are taken, so
 /// its shipped tables serve it); its cloth is standard PBR, a primitive per material.
 #[test]
 fn the_generated_character_round_trips_to_skin1() {
@@ -364,8 +365,22 @@ fn the_generated_character_round_trips_to_skin1() {
         "file → optics: σ_a {:?}, σ'_s {:?}, η {}, g {}; worst relative error vs skin1 {worst:.2e}",
         raw.sigma_a, raw.sigma_s_prime, raw.eta, raw.g
     );
-    assert!(worst < 1e-3, "{worst}");
+    // Read from its block encodings (as the engine loads it), the atlas's mean moves a little
+    // (BC1, ETC2): within PRESET_MATCH, so skin1's values are taken all the same.
+    assert!(worst < PRESET_MATCH, "{worst}");
     assert_eq!(raw.g, 0.0);
+    // The file as authored (its PNG decoded, no encodings beside it) is skin1 within 1e-3.
+    let bytes = std::fs::read(&path).unwrap();
+    let no_files = |uri: &str| -> Result<Vec<u8>, String> { Err(format!("no file {uri}")) };
+    let authored = load_gltf_slice(&bytes, "character.glb", &no_files).unwrap();
+    let (raw, _) = skin::skin_optics(&authored, 0).unwrap().optics("Skin");
+    let mut worst = 0.0f64;
+    for ch in 0..3 {
+        worst = worst.max((raw.sigma_a[ch] - SKIN1.sigma_a[ch]).abs() / SKIN1.sigma_a[ch]);
+        worst = worst
+            .max((raw.sigma_s_prime[ch] - SKIN1.sigma_s_prime[ch]).abs() / SKIN1.sigma_s_prime[ch]);
+    }
+    assert!(worst < 1e-3, "as authored: {worst}");
     let skin = c.materials[0].skin.as_ref().unwrap();
     assert!(skin.same_optics(&SKIN1));
     assert_eq!(
