@@ -128,7 +128,6 @@ pub const ROWS: &[Row] = &[
     row("play", "fps", NUM),
     row("play", "screenshots", Kind::OutDir),
     row("play", "json", Kind::Switch),
-    row("play", "model", Kind::InFile),
     row("render", "shading", Kind::Name),
     with("render", "skin", Kind::Name, RENDER_OUT),
     row("render", "material", Kind::Name),
