@@ -1,3 +1,4 @@
+pub mod albedo;
 pub mod args;
 pub mod bench;
 pub mod bench_effects;
@@ -21,3 +22,4 @@ pub mod soak;
 pub mod sss;
 pub mod stats;
 pub mod surfaces;
+pub mod texturing;
