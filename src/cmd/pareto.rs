@@ -170,9 +170,8 @@ fn cycles(m: &Value) -> String {
 /// The one table (plus the notes a reader needs to read it).
 pub fn markdown(report: &Value) -> String {
     let fams: Vec<&str> = arr(&report["families"]).filter_map(Value::as_str).collect();
-    let refs: Vec<&str> = arr(&report["references"])
-        .filter_map(|r| r["material"].as_str())
-        .collect();
+    // The main table averages the presets (the test materials have their own table below).
+    let refs: Vec<&str> = arr(&report["presets"]).filter_map(Value::as_str).collect();
     let cs = &report["cost_scene"];
     let mut s = format!(
         "Adapter: {} — {}. Errors: mean |ln(model/MC)| over the bins above the Monte Carlo's noise floor, \
