@@ -110,9 +110,16 @@ pub enum Command {
     },
     /// Total diffuse reflectance of every model next to a Monte Carlo reference.
     Sss(cmd::sss::SssArgs),
+    /// The multi-scatter albedo A ↔ reduced albedo α' map against the Monte Carlo (and the
+    /// KHR_materials_volume_scatter draft's relation).
+    Albedo(cmd::albedo::AlbedoArgs),
+    /// The albedo map through the subsurface medium: the textured Monte Carlo's uniform patch
+    /// and albedo-step profiles (writes albedo-step.json).
+    Texturing(cmd::texturing::TexturingArgs),
     /// Generate the path-traced reference data set (tools/reference/<material>.json).
     Reference(cmd::reference::ReferenceArgs),
-    /// Bake the spatial models' tables and LUTs the core ships (assets/sss/<material>-eta<η>.*).
+    /// Bake the optics tables the core ships (assets/sss/: the A ↔ α' table and the grids every
+    /// material's tables and LUT are interpolated from).
     Lut(cmd::lut::LutArgs),
     /// Radial exitance profile M(r) of a flat medium under a point light, per shading model.
     Profile(cmd::profile::ProfileArgs),
@@ -187,6 +194,8 @@ pub fn run(cli: Cli) -> Result<(), String> {
         }
         Some(Command::Bench(args)) => cmd::bench::run(args),
         Some(Command::Sss(args)) => cmd::sss::run(args),
+        Some(Command::Albedo(args)) => cmd::albedo::run(args),
+        Some(Command::Texturing(args)) => cmd::texturing::run(args),
         Some(Command::Reference(args)) => cmd::reference::run(args),
         Some(Command::Lut(args)) => cmd::lut::run(args),
         Some(Command::Profile(args)) => cmd::profile::run(args),

@@ -390,8 +390,10 @@ fn the_generated_character_round_trips_to_skin1() {
         }
     );
     assert!(dermis_core::shading::bake::shipped(skin).is_some());
-    // Its albedo: the multi-scatter colour × the atlas.
+    // Its albedo: the multi-scatter colour × the atlas. The factor brings the atlas's mean to
+    // skin1's measured A (0.38 / 0.18 / 0.10 per incident power, `shading::albedo`): the paint,
+    // tuned to the draft's relation (which puts skin1's A ~1.7–2× higher), is ~0.47–0.60 of it.
     let albedo = m.materials[0].skin_albedo();
     assert_eq!(albedo.texture, Some(0));
-    assert!(albedo.factor.iter().all(|&f| f > 0.8 && f <= 1.0));
+    assert!(albedo.factor.iter().all(|&f| f > 0.4 && f <= 1.0));
 }

@@ -13,6 +13,7 @@
 //! - [`bake`] and [`lut`]: the offline Monte Carlo bakes of the spatial models' tables and the
 //!   pre-integration LUTs the core ships (`assets/sss/`).
 
+pub mod albedo;
 pub mod bake;
 pub mod conformance;
 pub mod face;
@@ -20,3 +21,4 @@ pub mod ground_truth;
 pub mod lut;
 pub mod mc;
 pub mod scenes;
+pub mod texturing;

@@ -63,6 +63,7 @@ fn prepare(args: &ShadingArgs) -> Result<(References, Option<Value>), String> {
     let dir = ground_truth::default_dir();
     let sets = ground_truth::acceptance_materials()
         .into_iter()
+        .chain(ground_truth::test_materials())
         .map(|m| ReferenceSet::load(&ground_truth::file_for(&dir, &m.name)).map(|s| (m, s)))
         .collect::<Result<Vec<_>, _>>()?;
     let mali = match &args.mali {
@@ -268,6 +269,36 @@ impl CostScene {
     }
 }
 
+/// A model's scene scores split into the presets' and each test material's (in order).
+fn split_presets(all: &[SceneScore]) -> (Vec<SceneScore>, Vec<(String, Vec<SceneScore>)>) {
+    let presets: Vec<String> = ground_truth::acceptance_materials()
+        .iter()
+        .map(|m| m.name.to_string())
+        .collect();
+    let copy = |s: &SceneScore| SceneScore {
+        material: s.material.clone(),
+        scene: s.scene,
+        result: s.result.clone(),
+    };
+    let mine = all
+        .iter()
+        .filter(|s| presets.contains(&s.material))
+        .map(copy)
+        .collect();
+    let others = ground_truth::test_materials()
+        .iter()
+        .map(|m| {
+            let v = all
+                .iter()
+                .filter(|s| s.material == *m.name)
+                .map(copy)
+                .collect();
+            (m.name.to_string(), v)
+        })
+        .collect();
+    (mine, others)
+}
+
 /// Rings of `model`'s kernel (all, and those the subsurface pass samples at the cost
 /// scene's scale: a ring whose outer radius is under half a pixel is taken at the pixel).
 fn kernel_rings(model: ShadingModel, material: &Material) -> (usize, usize) {
@@ -335,7 +366,20 @@ fn build_report(
             "mali": m_json,
             "sss_rings": {"all": rings.0, "sampled": rings.1},
         });
-        if let Some(s) = model.map(|_| &scores[i]) {
+        if let Some(all) = model.map(|_| &scores[i]) {
+            // The presets' columns; each test material's overall beside them.
+            let (s, others) = split_presets(all);
+            let s = &s;
+            let mut per_material = Map::new();
+            for (name, scores) in &others {
+                let (fam, overall) = aggregate(scores, &families, |e| e.mean_log_all);
+                let fam: Map<String, Value> = families.iter().cloned().zip(fam).collect();
+                per_material.insert(
+                    name.to_string(),
+                    json!({"overall": overall, "families": fam}),
+                );
+            }
+            row["materials"] = Value::Object(per_material);
             let (fam, overall) = aggregate(s, &families, |e| e.mean_log_all);
             let (_, integrated) = aggregate(s, &families, |e| e.integrated_all);
             let (fam_se, se) = aggregate(s, &families, |e| e.ref_rel_se_all);
@@ -381,7 +425,16 @@ fn build_report(
             .map(|(a, b)| a / b);
         row["mali"]["G57_ratio_to_ward"] = json!(r);
     }
+    let presets: Vec<String> = ground_truth::acceptance_materials()
+        .iter()
+        .map(|m| m.name.to_string())
+        .collect();
     json!({
+        "presets": presets,
+        "test_materials": ground_truth::test_materials().iter().map(|m| json!({
+            "material": m.name, "sigma_a": m.sigma_a, "sigma_s_prime": m.sigma_s_prime,
+            "multi_scatter_albedo": m.albedo().map(|a| dermis_core::shading::albedo::multi_scatter_albedo(a, m.eta, m.g)),
+        })).collect::<Vec<_>>(),
         "adapter": gpu.adapter_name(),
         "label": if gpu.is_cpu() { "CPU-rasterizer ratios (software Vulkan), not phone GPU ratios" } else { "GPU timestamp ratios" },
         "cost_scene": {"size": [COST_SIZE.0, COST_SIZE.1], "view_mm": COST_VIEW_MM,

@@ -1,5 +1,6 @@
-//! `dermis lut`: bakes the spatial models' tables and the pre-integrated skin LUTs the core
-//! ships (`assets/sss/<material>-eta<η>.tables` and `.lut`, see
+//! `dermis lut`: bakes what the core ships in `assets/sss/`: the A ↔ α' table
+//! (`albedo.table`, `dermis_core::shading::albedo`), the spatial models' tables and the
+//! pre-integrated skin LUTs (`<material>-eta<η>.tables` and `.lut`, see
 //! `dermis_core::shading::bake` and `dermis_core::shading::preintegrated`).
 
 use std::path::PathBuf;
@@ -20,6 +21,41 @@ pub struct LutArgs {
     /// Only the kernel/oblique/slab tables (seconds), not the sphere LUTs (minutes).
     #[arg(long)]
     pub tables_only: bool,
+    /// Only the A ↔ α' table (`albedo.table`: ~10 min on 2 shared cores).
+    #[arg(long, conflicts_with = "tables_only")]
+    pub albedo_only: bool,
+}
+
+/// Bakes the A ↔ α' table (`albedo.table`).
+fn bake_albedo(out: &std::path::Path, threads: usize) -> Result<(), String> {
+    use dermis_core::shading::albedo::ETA_NODES;
+    use dermis_measure::albedo::{bake_table, PHOTONS, SEED};
+    let start = Instant::now();
+    let mut progress = Progress::new("lut albedo", ETA_NODES as u64);
+    progress.begin("A ↔ α' table (white Monte Carlo, one η row at a time)");
+    let table = bake_table(PHOTONS, SEED, threads, |r| {
+        progress.step(&format!("η row {r} done"))
+    });
+    progress.finish();
+    let worst = table
+        .multi
+        .iter()
+        .zip(&table.std_err)
+        .flat_map(|(a, s)| a.iter().zip(s))
+        .filter(|(a, _)| **a >= 0.05)
+        .map(|(a, s)| s / a)
+        .fold(0.0f32, f32::max);
+    let path = out.join("albedo.table");
+    let bytes = table.to_bytes();
+    std::fs::write(&path, &bytes).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+    println!(
+        "{} ({} bytes, {:.0} s; {PHOTONS} photons per η row; largest relative SE where A_e ≥ 0.05: {:.3} %)",
+        path.display(),
+        bytes.len(),
+        start.elapsed().as_secs_f64(),
+        100.0 * worst
+    );
+    Ok(())
 }
 
 /// Bakes every preset at its own η and at the reference scenes' η (the tables are
@@ -28,6 +64,12 @@ pub fn run(args: LutArgs) -> Result<(), String> {
     // Checked before minutes of Monte Carlo, not after.
     check_out_dir(&args.out)?;
     let threads = threads();
+    if !args.tables_only {
+        bake_albedo(&args.out, threads)?;
+    }
+    if args.albedo_only {
+        return Ok(());
+    }
     let budget = bake::DEFAULT_BUDGET;
     let materials: Vec<_> = PRESETS
         .iter()

@@ -1,3 +1,4 @@
+pub mod albedo;
 pub mod args;
 pub mod bench;
 pub mod bench_effects;
@@ -22,3 +23,4 @@ pub mod soak;
 pub mod sss;
 pub mod stats;
 pub mod surfaces;
+pub mod texturing;

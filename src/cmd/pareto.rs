@@ -170,9 +170,8 @@ fn cycles(m: &Value) -> String {
 /// The one table (plus the notes a reader needs to read it).
 pub fn markdown(report: &Value) -> String {
     let fams: Vec<&str> = arr(&report["families"]).filter_map(Value::as_str).collect();
-    let refs: Vec<&str> = arr(&report["references"])
-        .filter_map(|r| r["material"].as_str())
-        .collect();
+    // The main table averages the presets (the test materials have their own table below).
+    let refs: Vec<&str> = arr(&report["presets"]).filter_map(Value::as_str).collect();
     let cs = &report["cost_scene"];
     let mut s = format!(
         "Adapter: {} — {}. Errors: mean |ln(model/MC)| over the bins above the Monte Carlo's noise floor, \
@@ -232,6 +231,51 @@ pub fn markdown(report: &Value) -> String {
         front_names(report, true),
         front_names(report, false)
     );
+    s += &test_materials(report);
+    s
+}
+
+/// The second table: each model's overall error on the materials that are not a preset
+/// (made from a multi-scatter albedo and a mean free path), against its presets' overall.
+fn test_materials(report: &Value) -> String {
+    let names: Vec<&str> = arr(&report["test_materials"])
+        .filter_map(|m| m["material"].as_str())
+        .collect();
+    if names.is_empty() {
+        return String::new();
+    }
+    let mut s = String::from(
+        "\nMaterials that are not a preset (η = 1.4, g = 0; made from their multi-scatter albedo \
+         and mean free path through the measured inversion): overall error per material, and the \
+         largest as a multiple of the model's overall on the presets.\n\n| model | presets | ",
+    );
+    s += &names.join(" | ");
+    s += " | worst × presets |\n|---|---|";
+    s += &"---|".repeat(names.len() + 1);
+    s += "\n";
+    for r in models(report).filter(|r| r["error"].is_object()) {
+        let presets = &r["error"]["overall"];
+        let overall: Vec<&Value> = names
+            .iter()
+            .map(|n| &r["materials"][*n]["overall"])
+            .collect();
+        let worst = overall
+            .iter()
+            .filter_map(|v| v.as_f64())
+            .fold(f64::NAN, |a: f64, b| if a.is_nan() { b } else { a.max(b) });
+        let ratio = presets.as_f64().map_or(f64::NAN, |p| worst / p);
+        s += &format!(
+            "| {} | {} | {} | {} |\n",
+            r["model"].as_str().unwrap_or("?"),
+            num(presets, 3),
+            overall
+                .iter()
+                .map(|v| num(v, 3))
+                .collect::<Vec<_>>()
+                .join(" | "),
+            num(&json!(ratio), 2)
+        );
+    }
     s
 }
 

@@ -32,7 +32,7 @@ pub struct ReferenceArgs {
     /// tools/reference/README.md; `--scene head`: 8e6 for red, ×1.5 green, ×2.5 blue, per light).
     #[arg(long, value_parser = parse_reference_photons, allow_hyphen_values = true)]
     pub photons: Option<u64>,
-    /// skin1 | white-coat | all.
+    /// skin1 | white-coat | skin-dark | skin-pale | marble | all.
     #[arg(long, default_value = "all")]
     pub material: String,
     /// Seed of the Monte Carlo.
@@ -44,24 +44,42 @@ pub struct ReferenceArgs {
 }
 
 /// Default photons per channel and scene: enough for ≲ 1–2 % relative standard error over
-/// the bins that carry the light, within a few minutes per material on two cores (the white
-/// coat's near-unit albedo makes its walks ~20× longer than skin1's).
+/// the bins that carry the light, within a few minutes per material on two cores. A material
+/// with a channel whose albedo is near 1 (α' > 0.999: the white coat, marble) walks ~20× longer
+/// per photon and gets 400,000; the others 2,000,000.
 pub fn default_photons(material: &Material) -> u64 {
-    match &*material.name {
-        "white-coat" => 400_000,
-        _ => 2_000_000,
+    if material.albedo().iter().any(|a| *a > 0.999) {
+        400_000
+    } else {
+        2_000_000
     }
 }
 
+/// Every material with a reference set: the presets as the acceptance case, then the test
+/// materials that are not a preset.
+fn all_materials() -> Vec<Material> {
+    [SKIN1, WHITE_COAT]
+        .iter()
+        .map(ground_truth::acceptance_material)
+        .chain(ground_truth::test_materials())
+        .collect()
+}
+
 fn materials(name: &str) -> Result<Vec<Material>, String> {
-    let all = [SKIN1, WHITE_COAT];
+    let all = all_materials();
     if name == "all" {
-        return Ok(all.iter().map(ground_truth::acceptance_material).collect());
+        return Ok(all);
     }
+    let known: Vec<&str> = all.iter().map(|m| &*m.name).collect();
     all.iter()
         .find(|m| m.name == name)
-        .map(|m| vec![ground_truth::acceptance_material(m)])
-        .ok_or_else(|| format!("unknown material `{name}` (known: skin1, white-coat, all)"))
+        .map(|m| vec![m.clone()])
+        .ok_or_else(|| {
+            format!(
+                "unknown material `{name}` (known: {}, all)",
+                known.join(", ")
+            )
+        })
 }
 
 pub fn run(args: ReferenceArgs) -> Result<(), String> {

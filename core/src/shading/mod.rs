@@ -13,6 +13,7 @@ pub mod burley;
 pub mod dipole;
 pub mod edge_spread;
 pub mod fresnel;
+pub mod interp;
 pub mod material;
 pub mod oss;
 pub mod pixel;

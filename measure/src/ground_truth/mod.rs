@@ -29,6 +29,7 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 
 use crate::mc::{self, Medium};
+use dermis_core::shading::albedo;
 use dermis_core::shading::material::{Material, SKIN1, WHITE_COAT};
 
 /// Relative index of refraction of the acceptance case.
@@ -206,6 +207,30 @@ pub fn acceptance_materials() -> [Material; 2] {
         acceptance_material(&WHITE_COAT),
     ]
 }
+
+/// Materials that are not a preset, for `bench shading` (η = [`ETA`], g = 0), each made from
+/// a multi-scatter albedo A and a reduced mean free path 1/σ'_t through the measured
+/// inversion (`shading::albedo::material`): a darker skin and a paler one (skin1's mean free
+/// paths, 1.30/0.95/0.67 mm), and marble (Jensen et al. 2001's σ'_t, 2.19/2.62/3.00 mm⁻¹).
+/// Their albedos are [`TEST_ALBEDO_ENTERED`] × C(η) (per incident power, as
+/// `shading::albedo` defines A; C(1.4) = 0.9232): skin-dark 0.185/0.083/0.046, skin-pale
+/// 0.646/0.462/0.351, marble 0.812/0.794/0.757.
+pub fn test_materials() -> [Material; 3] {
+    let skin_mfp = [1.0 / 0.772, 1.0 / 1.05, 1.0 / 1.49];
+    let marble_mfp = [1.0 / 2.19, 1.0 / 2.62, 1.0 / 3.00];
+    let c = dermis_core::shading::subsurface::exit_normalisation(ETA);
+    let a = |i: usize| TEST_ALBEDO_ENTERED[i].map(|x| x * c);
+    [
+        albedo::material("skin-dark", a(0), skin_mfp, ETA, 0.0),
+        albedo::material("skin-pale", a(1), skin_mfp, ETA, 0.0),
+        albedo::material("marble", a(2), marble_mfp, ETA, 0.0),
+    ]
+}
+
+/// The fraction of entered light each test material returns, per channel (their
+/// multi-scatter albedo per incident power is this × C(η)).
+pub const TEST_ALBEDO_ENTERED: [[f64; 3]; 3] =
+    [[0.20, 0.09, 0.05], [0.70, 0.50, 0.38], [0.88, 0.86, 0.82]];
 
 fn medium(m: &Material, c: usize) -> Medium {
     Medium::new(m.sigma_a[c], m.sigma_s_prime[c], m.g, m.eta)
@@ -524,7 +549,7 @@ impl ReferenceSet {
 }
 
 /// Rounds every non-integer number in `v` to 6 significant digits.
-fn round_numbers(v: &mut serde_json::Value) {
+pub(crate) fn round_numbers(v: &mut serde_json::Value) {
     use serde_json::Value;
     match v {
         Value::Number(n) if n.is_f64() => {

@@ -64,12 +64,14 @@
 //! xoshiro256++ stream seeded from (seed, b). Threads take batches dynamically, but batch
 //! tallies are summed in batch order, so results are bit-identical for any `threads`.
 
+pub mod albedo;
 pub mod edge;
 pub mod estimate;
 pub mod fresnel;
 pub mod mesh;
 pub mod mesh_walk;
 pub mod phase;
+pub mod pigment;
 pub mod rng;
 pub mod sphere;
 pub mod walk;

@@ -44,9 +44,11 @@ pub fn stage_assets(src: &Path, dest: &Path) -> Result<usize, String> {
         entries.sort();
         for p in entries {
             let name = p.file_name().and_then(|n| n.to_str()).unwrap_or("");
-            // `.lut`, `.tables`: the spatial models' tables are compiled into the library
+            // `.lut`, `.tables`, `.table`: the optics tables are compiled into the library
             // (`include_bytes!`), a copy among the assets would be dead weight.
-            let baked = name.ends_with(".lut") || name.ends_with(".tables");
+            let baked = [".lut", ".tables", ".table"]
+                .iter()
+                .any(|e| name.ends_with(e));
             // Block encodings the phone does not read (BC: desktop GPUs).
             let desktop = name.ends_with(".ktx2") && !name.ends_with(".etc2.ktx2");
             if name.starts_with('.') || name.ends_with(".md") || baked || desktop {
