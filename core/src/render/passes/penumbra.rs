@@ -24,8 +24,19 @@ pub const BLOCK: u32 = 8;
 pub const REACH_MM: f32 = crate::shading::edge_spread::SPAN_MM as f32;
 /// The grid's texture format: seed uv, depth, valid.
 pub const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
-/// The depth step that makes an edge, in metres along the light.
+/// The depth step that makes an edge, in metres along the light: at most 1 cm, and no more
+/// than a smooth surface can span across the seed pass's window ([`EDGE_GAP_TEXELS`]), so a
+/// caster a few millimetres above a finely mapped receiver (a blade over a measured medium, a
+/// finger over a palm) still has its edge.
 pub const EDGE_GAP_M: f32 = 0.01;
+/// The same in the map's texel widths: a continuous surface turned up to 80° from the light
+/// spans 10 · tan 80° ≈ 57 texel widths of depth over the seed pass's 10 texels.
+pub const EDGE_GAP_TEXELS: f32 = 57.0;
+
+/// The edge gap (m) for a shadow map of `texel_m` texels.
+pub fn edge_gap_m(texel_m: f32) -> f32 {
+    EDGE_GAP_M.min(EDGE_GAP_TEXELS * texel_m)
+}
 /// Uniform slot stride (the minimum uniform offset alignment).
 const SLOT: u64 = 256;
 /// The most passes a grid can need: the seed and one jump per halving of 2¹⁶ texels.
@@ -249,7 +260,7 @@ impl Pass for PenumbraPass {
             return PassFrame::default();
         }
         let shadow = &frame.shadow;
-        let gap = EDGE_GAP_M * shadow.depth_per_m;
+        let gap = edge_gap_m(shadow.texel_m) * shadow.depth_per_m;
         let jumps = jump_steps(self.size, shadow.width_m()).count() as u32;
         if self.written != Some((jumps, gap)) {
             let first = std::iter::once(0);
