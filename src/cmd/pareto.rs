@@ -5,6 +5,7 @@
 
 use std::path::Path;
 
+use dermis_core::shading::ShadingModel;
 use dermis_measure::ground_truth::metric::ErrorStats;
 use dermis_measure::ground_truth::Scene;
 use serde_json::{json, Value};
@@ -113,15 +114,28 @@ fn models(report: &Value) -> impl Iterator<Item = &Value> {
 }
 
 /// The models on the error–G57-cycles front, richest (most accurate, costliest) first: the
-/// governor's tiers (`governor-front.txt`, embedded by the core).
+/// governor's tiers (`governor-front.txt`, embedded by the core). The last tier is always a
+/// plain BRDF (no subsurface transport): the governor's floor, for an unlit or tiny character
+/// whose transport shows nothing and which then needs no LUT, penumbra map or subsurface pass.
+/// Where the front dominates every BRDF (`preintegrated` costs fewer G57 cycles than `ward`
+/// since the shared constants became compile-time), the cheapest BRDF is appended.
 pub fn front_models(report: &Value) -> Vec<String> {
-    let mut on: Vec<_> = panel_points(report, true)
-        .0
-        .into_iter()
-        .filter(|p| p.3)
-        .collect();
+    let points = panel_points(report, true).0;
+    let plain = |name: &str| {
+        name.parse::<ShadingModel>()
+            .is_ok_and(|m| !m.effects().subsurface)
+    };
+    let mut on: Vec<_> = points.iter().filter(|p| p.3).cloned().collect();
     on.sort_by(|a, b| b.1.total_cmp(&a.1));
-    on.into_iter().map(|p| p.0).collect()
+    let mut names: Vec<String> = on.into_iter().map(|p| p.0).collect();
+    if !names.iter().any(|n| plain(n)) {
+        let floor = points
+            .iter()
+            .filter(|p| plain(&p.0) && p.1.is_finite())
+            .min_by(|a, b| a.1.total_cmp(&b.1));
+        names.extend(floor.map(|p| p.0.clone()));
+    }
+    names
 }
 
 /// `governor-front.txt`: a comment, then [`front_models`] one per line.
@@ -460,6 +474,22 @@ mod tests {
             .map(|m| m.name().to_string())
             .collect();
         assert_eq!(names, front_models(&report));
+    }
+
+    /// A front that dominates every BRDF still ends on one: the cheapest, the governor's floor.
+    #[test]
+    fn the_front_file_ends_on_a_plain_brdf() {
+        let row = |model: &str, err: f64, cycles: f64| {
+            json!({"model": model, "error": {"overall": err},
+                   "mali": {"G57": {"per_pixel": cycles, "static": cycles}}})
+        };
+        let dominated = json!({"models": [
+            row("ward", 4.7, 3.3), row("ward-printed", 4.7, 3.7),
+            row("tabulated", 0.14, 120.0), row("preintegrated", 0.08, 3.0)]});
+        assert_eq!(front_models(&dominated), ["preintegrated", "ward"]);
+        // On the front already: nothing is appended.
+        let plain = json!({"models": [row("ward", 4.7, 2.0), row("preintegrated", 0.08, 3.0)]});
+        assert_eq!(front_models(&plain), ["preintegrated", "ward"]);
     }
 
     #[test]
