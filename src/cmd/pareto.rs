@@ -190,7 +190,7 @@ pub fn markdown(report: &Value) -> String {
     let mut s = format!(
         "Adapter: {} — {}. Errors: mean |ln(model/MC)| over the bins above the Monte Carlo's noise floor, \
          per scene family, averaged over {} (η = 1.4, g = 0); overall = the four kinds (point, edge, sphere, slab) weighted equally; \
-         integrated = |ln(∫model/∫MC)|, same weighting; face = mean |ln(model/Mitsuba 3)| on the scanned head under front, side and back light (`dermis bench face`). Cost: {}x{} target filled by a flat skin patch \
+         integrated = |ln(∫model/∫MC)|, same weighting; face = mean |ln(model/truth)| on the scanned head under front, side and back light against the project's Monte Carlo on its mesh (`dermis bench face`). Cost: {}x{} target filled by a flat skin patch \
          ({} mm wide, {:.2} mm/pixel, coverage {:.0} %), point light, both passes for screen-space models, {} rounds. \
          Mali: fragment cycles per pixel (`bound`, Mesa {}), the subsurface pass added for screen-space models; \
          loops weighted by their iteration counts ({} samples per sampled ring), Mesa's static figure in parentheses.\n\n",
