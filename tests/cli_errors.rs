@@ -1,5 +1,7 @@
 //! Bad input to the CLI gives a one-line error and a non-zero exit status, never a panic.
 
+mod external;
+
 use std::process::Command;
 
 fn dermis(args: &[&str]) -> (bool, String) {
@@ -103,8 +105,9 @@ fn out_of_range_clip() {
 /// missing and what the file has, before any window or GPU work.
 #[test]
 fn users_character_bad_choices() {
-    let woman = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../shared/assets-external/QuaterniusWomanTankTop/WomanTankTop.glb");
+    let Some(woman) = external::external_model("QuaterniusWomanTankTop/WomanTankTop.glb") else {
+        return;
+    };
     let woman = woman.to_str().unwrap();
     let out = tmp_dir("users_character").join("x.png");
     let out = out.to_str().unwrap();

@@ -2,6 +2,8 @@
 //! docs/gallery/shots.txt is rendered again by the binary and compared with its committed
 //! image, and every committed image has its line. Regenerate with `bash tools/gallery.sh`.
 
+mod external;
+
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -48,6 +50,15 @@ fn gallery_images_match_what_dermis_render_produces() {
     std::fs::create_dir_all(&tmp).unwrap();
     let mut failures = Vec::new();
     for (name, args) in shots() {
+        // A shot of a third-party character needs `../shared` (CI has it).
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let outside = args.iter().filter(|a| a.starts_with("../shared/"));
+        if !outside
+            .into_iter()
+            .all(|a| external::present(&root.join(a)))
+        {
+            continue;
+        }
         let out = tmp.join(format!("{name}.png"));
         let run = Command::new(env!("CARGO_BIN_EXE_dermis"))
             .arg("render")
