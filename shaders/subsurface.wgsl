@@ -128,8 +128,9 @@ fn sss_exit(s: Surface) -> f32 {
 
 #ifdef TRANSLUCENCY
 // Diffuse transmittance through `t_mm` of material: the table holds ln T at thicknesses
-// log-spaced SLAB_FIRST_MM · 2^k mm, interpolated linearly (T falls off exponentially); past
-// the thickest node ln T goes on at the slope of the last interval (half that node wide).
+// log-spaced SLAB_FIRST_MM · 2^k mm, ln T linear in the thickness between them (deep in a
+// medium light decays exponentially with depth); past the thickest node ln T goes on at the
+// slope of the last interval (half that node wide).
 fn sss_slab(t_mm: f32) -> vec3<f32> {
     let last = SLAB_NODES - 1u;
     let x = log2(max(t_mm, SLAB_FIRST_MM) / SLAB_FIRST_MM);
@@ -139,7 +140,8 @@ fn sss_slab(t_mm: f32) -> vec3<f32> {
         return exp(model.slab[last].rgb + slope * (t_mm - thickest));
     }
     let i = min(u32(x), last - 1u);
-    return exp(mix(model.slab[i].rgb, model.slab[i + 1u].rgb, x - f32(i)));
+    let f = clamp(t_mm / (SLAB_FIRST_MM * exp2(f32(i))) - 1.0, 0.0, 1.0);
+    return exp(mix(model.slab[i].rgb, model.slab[i + 1u].rgb, f));
 }
 
 #endif

@@ -24,6 +24,10 @@ pub struct LutArgs {
     /// Only the A ↔ α' table (`albedo.table`: ~10 min on 2 shared cores).
     #[arg(long, conflicts_with = "tables_only")]
     pub albedo_only: bool,
+    /// Everything but the A ↔ α' table (the spatial models' tables and the sphere LUTs: what
+    /// a change to the slab or kernel bake re-makes).
+    #[arg(long, conflicts_with_all = ["tables_only", "albedo_only"])]
+    pub no_albedo: bool,
 }
 
 /// Bakes the A ↔ α' table (`albedo.table`).
@@ -64,7 +68,7 @@ pub fn run(args: LutArgs) -> Result<(), String> {
     // Checked before minutes of Monte Carlo, not after.
     check_out_dir(&args.out)?;
     let threads = threads();
-    if !args.tables_only {
+    if !(args.tables_only || args.no_albedo) {
         bake_albedo(&args.out, threads)?;
     }
     if args.albedo_only {

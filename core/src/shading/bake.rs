@@ -66,7 +66,7 @@ pub struct Budget {
 pub const DEFAULT_BUDGET: Budget = Budget {
     kernel: 40_000,
     oblique: 10_000,
-    slab: 30_000,
+    slab: 1_000_000,
     kernel_events: 8_000_000,
     events: 1_500_000,
     max_events: 200_000,

@@ -303,18 +303,25 @@ fn spread(p: &Packed, px: &Pixel) -> DVec3 {
 
 /// f64 twin of `sss_slab` (the packed table holds ln T).
 pub fn slab_packed(pm: &ModelParams, t_mm: f64) -> DVec3 {
-    let p = unpack(pm);
+    slab_transmittance(&unpack(pm).slab, t_mm)
+}
+
+/// The diffuse transmittance through `t_mm` from a table of ln T at the slab nodes
+/// SLAB_FIRST_MM · 2^k: ln T linear in the thickness between nodes (deep in a medium light
+/// decays exponentially with depth), and past the thickest node at the last interval's slope.
+pub fn slab_transmittance(ln_t: &[DVec3; SLAB_NODES], t_mm: f64) -> DVec3 {
     let exp = |v: DVec3| DVec3::new(v.x.exp(), v.y.exp(), v.z.exp());
     let x = (t_mm.max(SLAB_FIRST_MM) / SLAB_FIRST_MM).log2();
     let last_node = (SLAB_NODES - 1) as f64;
     if x >= last_node {
         let width = SLAB_FIRST_MM * 2f64.powf(last_node - 1.0);
-        let slope = (p.slab[SLAB_NODES - 1] - p.slab[SLAB_NODES - 2]) / width;
+        let slope = (ln_t[SLAB_NODES - 1] - ln_t[SLAB_NODES - 2]) / width;
         let t_last = SLAB_FIRST_MM * 2f64.powf(last_node);
-        return exp(p.slab[SLAB_NODES - 1] + slope * (t_mm - t_last));
+        return exp(ln_t[SLAB_NODES - 1] + slope * (t_mm - t_last));
     }
     let i = (x as usize).min(SLAB_NODES - 2);
-    exp(p.slab[i].lerp(p.slab[i + 1], x - i as f64))
+    let f = (t_mm / (SLAB_FIRST_MM * 2f64.powi(i as i32)) - 1.0).clamp(0.0, 1.0);
+    exp(ln_t[i].lerp(ln_t[i + 1], f))
 }
 
 /// f64 twin of `sss_split`: (local radiance, irradiance to spread, exit factor).
