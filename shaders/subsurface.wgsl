@@ -100,26 +100,34 @@ fn sss_spread(s: Surface) -> vec3<f32> {
     let len = length(along);
     let dir = select(vec3<f32>(0.0), along / max(len, 1e-12), len > 1e-9);
     let rho = len * s.light_dist * model.mm_per_m;
-    let to_light = s.l * s.light_dist;
     let delta = min(sss_shift(max(nl, 0.0)), vec3<f32>(rho));
     let ddelta = -sss_shift_slope(max(nl, 0.0)) * max(nl, 0.0) * len / (s.light_dist * model.mm_per_m);
-    // The light as it reaches this point (occluded here: nothing is spread from here).
-    let light = s.light;
-    var out = vec3<f32>(0.0);
-    for (var c = 0u; c < 3u; c = c + 1u) {
-        let back = dir * (delta[c] / model.mm_per_m);
-        let d = to_light - back;
-        let r = max(length(d), 1e-3);
-        // On a curved surface the entry point's normal is turned toward the light by δ/ρ_c
-        // (at most 1 rad).
-        let tilt = min(delta[c] / max(s.curvature_radius * model.mm_per_m, 1e-3), 1.0);
-        let n = normalize(s.n + dir * tilt);
-        let mu = max(dot(n, d) / r, 0.0);
-        let area = select(1.0, (rho - delta[c]) / rho, rho > 1e-6) * max(1.0 - ddelta[c], 0.0);
-        let seen = light_visible(s.pos + back, s.n);
-        out[c] = light[c] * seen / (r * r) * mu * sss_oblique(mu)[c] * area;
-    }
-    return out;
+    // One call per channel, each with its own shift: no vector indexed by a loop counter (with
+    // wgpu's index clamping, Valhall kept such a vector in memory: 46 G57 cycles, now 10).
+    return vec3<f32>(
+        sss_spread_channel(s, dir, rho, delta.x, ddelta.x, vec3<f32>(1.0, 0.0, 0.0)),
+        sss_spread_channel(s, dir, rho, delta.y, ddelta.y, vec3<f32>(0.0, 1.0, 0.0)),
+        sss_spread_channel(s, dir, rho, delta.z, ddelta.z, vec3<f32>(0.0, 0.0, 1.0)),
+    );
+}
+
+// One channel (`pick`: its unit vector) of `sss_spread`, with that channel's shift `delta` (mm)
+// and its slope term `ddelta`; `dir` the surface direction away from the light's foot, `rho`
+// (mm) the distance to it. The light as it reaches this point (occluded here: nothing is
+// spread from here).
+fn sss_spread_channel(s: Surface, dir: vec3<f32>, rho: f32, delta: f32, ddelta: f32,
+                      pick: vec3<f32>) -> f32 {
+    let back = dir * (delta / model.mm_per_m);
+    let d = s.l * s.light_dist - back;
+    let r = max(length(d), 1e-3);
+    // On a curved surface the entry point's normal is turned toward the light by δ/ρ_c
+    // (at most 1 rad).
+    let tilt = min(delta / max(s.curvature_radius * model.mm_per_m, 1e-3), 1.0);
+    let n = normalize(s.n + dir * tilt);
+    let mu = max(dot(n, d) / r, 0.0);
+    let area = select(1.0, (rho - delta) / rho, rho > 1e-6) * max(1.0 - ddelta, 0.0);
+    let seen = light_visible(s.pos + back, s.n);
+    return dot(s.light * sss_oblique(mu), pick) * seen / (r * r) * mu * area;
 }
 
 fn sss_exit(s: Surface) -> f32 {

@@ -22,6 +22,11 @@ pub struct ShadersArgs {
     /// Directory to write NAME.vert.spv and NAME.frag.spv into (created if missing).
     #[arg(long)]
     pub spirv: PathBuf,
+    /// Also write each composed shader's WGSL (NAME.wgsl), as the renderer builds it: what
+    /// the SPIR-V was made from, for reading or for trying a change through `naga` and
+    /// `tools/mali/cycles.sh` without a rebuild.
+    #[arg(long)]
+    pub wgsl: bool,
 }
 
 /// Every shader as (name, composed WGSL): the models in registry order, `unlit`, `sss_pass`,
@@ -164,8 +169,9 @@ fn first_line(s: &str) -> String {
         .to_string()
 }
 
-/// Writes every shader's two stages into `dir`; returns the names written.
-pub fn write_spirv(dir: &Path) -> Result<Vec<String>, String> {
+/// Writes every shader's two stages into `dir` (and its composed WGSL, with `wgsl`); returns
+/// the names written.
+pub fn write_spirv(dir: &Path, wgsl: bool) -> Result<Vec<String>, String> {
     crate::cmd::args::check_out_dir(dir)?;
     let mut names = Vec::new();
     let mut all: Vec<(String, String, &str)> = sources()?
@@ -178,10 +184,16 @@ pub fn write_spirv(dir: &Path) -> Result<Vec<String>, String> {
     }
     for (name, src, fs) in all {
         let (vert, frag) = to_spirv(&name, &src, fs)?;
+        let write = |path: std::path::PathBuf, bytes: &[u8]| {
+            std::fs::write(&path, bytes)
+                .map_err(|e| format!("cannot write {}: {e}", path.display()))
+        };
         for (stage, words) in [("vert", vert), ("frag", frag)] {
             let path = dir.join(format!("{name}.{stage}.spv"));
-            std::fs::write(&path, bytemuck::cast_slice::<u32, u8>(&words))
-                .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+            write(path, bytemuck::cast_slice::<u32, u8>(&words))?;
+        }
+        if wgsl {
+            write(dir.join(format!("{name}.wgsl")), src.as_bytes())?;
         }
         names.push(name);
     }
@@ -292,7 +304,7 @@ pub fn penumbra_grid_cycles(mali: &Value, gpu: &str) -> Option<f64> {
 }
 
 pub fn run(args: ShadersArgs) -> Result<(), String> {
-    let names = write_spirv(&args.spirv)?;
+    let names = write_spirv(&args.spirv, args.wgsl)?;
     println!(
         "{}: {} shaders × 2 stages ({})",
         args.spirv.display(),
