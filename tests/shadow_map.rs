@@ -229,3 +229,104 @@ fn shadowed_frames_stay_finite_and_non_negative_in_f16_under_every_model() {
         }
     }
 }
+
+/// A ball of skin lit from the side, drawn through the real renderer with the ball casting
+/// into the key light's shadow map and with nothing casting: a convex body shadows nothing
+/// of itself, so where it faces the light the two frames agree. Near the terminator the
+/// ball turns away from the light and its depth in the map steps by tens of texels' worth
+/// between neighbours — the penumbra map must not take such a smooth, steep surface for a
+/// caster's edge and bleed or darken around it (the head's false edges, issue 26).
+#[test]
+fn a_ball_lit_at_grazing_incidence_has_no_penumbra() {
+    use dermis_core::anim::Pose;
+    use dermis_core::asset::shapes::sphere_model;
+    use dermis_core::render::{Offscreen, Renderer};
+    use dermis_core::scene::{DrawSet, FramePacket, Light, Roles, SubjectPose};
+    use dermis_core::shading::material::SKIN1;
+    const N: u32 = 256;
+    let (r, far) = (0.05f32, 1000.0f32);
+    let gpu = Gpu::headless().unwrap_or_else(|e| panic!("{e}"));
+    let mut renderer = Renderer::new(&gpu, wgpu::TextureFormat::Rgba16Float);
+    renderer.set_clear(wgpu::Color::BLACK);
+    renderer.resize(&gpu, (N, N));
+    let target = Offscreen::with_format(&gpu, N, N, wgpu::TextureFormat::Rgba16Float);
+    // Thick enough that nothing shows through it from behind.
+    let model = sphere_model(r, 2.0 * r);
+    renderer
+        .load_character(&gpu, &model, &Roles::medium(&SKIN1))
+        .unwrap_or_else(|e| panic!("{e}"));
+    let mut pose = Pose::new(&model);
+    pose.update_world(&model);
+    // The light along +x (a little above), the camera along +z: the terminator runs down
+    // the middle of the image, the lit half on the right.
+    let to_light = Vec3::new(1.0, 0.15, 0.0).normalize();
+    let view = glam::camera::rh::view::look_at_mat4(Vec3::Z, Vec3::ZERO, Vec3::Y);
+    let h = 1.05 * r;
+    let proj = glam::camera::rh::proj::directx::orthographic(-h, h, -h, h, 0.01, 10.0);
+    let frame_view = FrameView {
+        view_proj: proj * view,
+        camera_pos: Vec3::Z,
+        light: Light {
+            position: to_light * far,
+            intensity: far * far,
+            color: Vec3::ONE,
+            ambient: Vec3::ZERO,
+        },
+        exposure: 1.0,
+    };
+    let mut shot = |casts: bool| {
+        renderer.set_shadow_scene(&gpu, casts, &[], None, SHADOW_MAP_SIZE);
+        let packet = FramePacket {
+            subject: Some(SubjectPose {
+                model: &model,
+                pose: &pose,
+                world: Mat4::IDENTITY,
+            }),
+            ..FramePacket::new(
+                (N, N),
+                frame_view,
+                DrawSet {
+                    shading: Some(ShadingModel::Preintegrated),
+                    character: true,
+                    props: false,
+                    ui: false,
+                },
+            )
+        };
+        let frame = renderer.prepare(&gpu, &packet);
+        assert_eq!(frame.shadow.drawn, casts);
+        renderer.draw_offscreen(&gpu, &target, &frame);
+        target.read_f16(&gpu)
+    };
+    let (cast, free) = (shot(true), shot(false));
+    // Per band of n·l on the lit side seen at n·v ≥ 0.3: the largest change of the red
+    // channel (the one the penumbra spreads furthest).
+    let bands = [0.02f32, 0.05, 0.1, 0.2, 0.4, 1.01];
+    let mut worst = [0.0f32; 5];
+    let mut counts = [0usize; 5];
+    for (i, (a, b)) in cast.iter().zip(&free).enumerate() {
+        let x = ((i as u32 % N) as f32 + 0.5) / N as f32 * 2.0 * h - h;
+        let y = h - ((i as u32 / N) as f32 + 0.5) / N as f32 * 2.0 * h;
+        let q = r * r - x * x - y * y;
+        if q <= 0.0 || q.sqrt() / r < 0.3 {
+            continue;
+        }
+        let n = Vec3::new(x, y, q.sqrt()) / r;
+        let nl = n.dot(to_light);
+        let Some(k) = bands.windows(2).position(|w| nl >= w[0] && nl < w[1]) else {
+            continue;
+        };
+        counts[k] += 1;
+        worst[k] = worst[k].max((a[0] / b[0].max(1e-6) - 1.0).abs());
+    }
+    println!("n·l bands {bands:?}: pixels {counts:?}, largest |cast/free − 1| {worst:?}");
+    assert!(counts.iter().all(|&c| c > 20), "{counts:?}");
+    for (k, w) in worst.iter().enumerate() {
+        assert!(
+            *w < 0.05,
+            "n·l {}–{}: the ball's own map changes its lit side by {w}",
+            bands[k],
+            bands[k + 1]
+        );
+    }
+}
