@@ -330,3 +330,48 @@ fn a_ball_lit_at_grazing_incidence_has_no_penumbra() {
         );
     }
 }
+
+/// The showroom's close-up (the game's own camera and orbiting key light, the renderer's fit
+/// around the runner): the key light's map is cropped to what the camera frames wherever that
+/// saves texels — with the light in front, where the showroom starts, its texel at the runner
+/// is at most 0.8 of the uncropped 3 mm (the whole body and a margin) — never coarser, and
+/// every point of the runner's bound the camera sees stays inside the map.
+#[test]
+fn the_showroom_close_up_crops_the_shadow_map_to_what_it_sees() {
+    use dermis_core::app::showroom::{framing, orbit_light, LIGHT_PERIOD_S};
+    use dermis_core::render::ShadowView;
+    use dermis_core::scene::CHARACTER;
+    use dermis_core::ui::Rect;
+    let feet = Vec3::ZERO;
+    let (centre, r) = CHARACTER.sphere_at(feet);
+    // The renderer's margin for a posed subject (renderer.rs, POSE_MARGIN).
+    let r = 1.25 * r;
+    let camera = framing(feet, 16.0 / 9.0, Rect::new(0.0, 0.0, 0.62, 1.0)).view_proj(16.0 / 9.0);
+    let mut texels = Vec::new();
+    for k in 0..16 {
+        let light = orbit_light(feet, LIGHT_PERIOD_S * k as f32 / 16.0);
+        let fit = ShadowView::fit(light, centre, r, SHADOW_MAP_SIZE);
+        let crop = fit.cropped_to(camera, centre, r);
+        assert!(crop.texel_m <= fit.texel_m, "light {light}");
+        texels.push((fit.texel_m * 1e3, crop.texel_m * 1e3));
+        // Points of the runner's sphere on a grid, those the camera sees: inside the map.
+        let n = 12;
+        for (i, j, l) in (0..n * n * n).map(|q| (q % n, q / n % n, q / (n * n))) {
+            let f = |a: usize| (a as f32 + 0.5) / n as f32 * 2.0 - 1.0;
+            let p = centre + Vec3::new(f(i), f(j), f(l)) * r;
+            let seen = camera * p.extend(1.0);
+            let s = seen.truncate() / seen.w;
+            if p.distance(centre) > r || seen.w <= 0.0 || s.x.abs() > 1.0 || s.y.abs() > 1.0 {
+                continue;
+            }
+            let q = crop.view_proj * p.extend(1.0);
+            let m = q.truncate() / q.w;
+            assert!(
+                m.x.abs() <= 1.0 && m.y.abs() <= 1.0,
+                "light {light}: {p} off the map"
+            );
+        }
+    }
+    println!("showroom, texel at the runner over a turn of the light (mm, uncropped → cropped): {texels:.2?}");
+    assert!(texels[0].1 <= 0.8 * texels[0].0, "{texels:?}");
+}
