@@ -114,7 +114,7 @@ impl ShadowView {
         let (mut lo, mut hi) = (Vec2::splat(f32::MAX), Vec2::splat(f32::MIN));
         for p in corners {
             let q = self.view_proj * p.extend(1.0);
-            if !(q.w > 1e-6) {
+            if q.w.is_nan() || q.w <= 1e-6 {
                 return self;
             }
             lo = lo.min(q.xy() / q.w);
@@ -167,7 +167,7 @@ fn seen_part(camera: Mat4, centre: Vec3, radius: f32) -> Option<[Vec3; 8]> {
     let (near, far) = (at(0.0, 0.0, 0.0)?, at(0.0, 0.0, 1.0)?);
     let axis = (far - near).try_normalize()?;
     let d = (centre - near).dot(axis);
-    if !(d + radius > 0.0) {
+    if (d + radius).is_nan() || d + radius <= 0.0 {
         return None;
     }
     let depths = [(d - radius).max(0.0), d + radius];
