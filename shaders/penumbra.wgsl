@@ -4,10 +4,11 @@
 // it is from the nearest shadow edge, so a model can filter its shadow by the material's
 // diffusion profile (preintegrated: the edge-spread function in its LUT).
 //
-// Seed pass: a grid texel (8×8 map texels) is a seed when a depth step lies in its block or on
-// its one-texel border. Jump flooding (Rong & Tan 2006): passes with halving steps each keep
-// the nearest seed among nine texels a step apart. Loops are written out, so a static cycle
-// count sees every fetch.
+// Seed pass: a grid texel (8×8 map texels) is a seed when a caster's edge lies in its block or
+// on its one-texel border: a depth step that breaks the local slope by more than a gap (see
+// `edge`); its depth is the edge's near side. Jump flooding (Rong & Tan 2006): passes with
+// halving steps each keep the nearest seed among nine texels a step apart. Loops are written
+// out, so a static cycle count sees every fetch.
 //
 // Texel: xy the seed's position (uv of the map), z the caster's depth there, w 1 (0: none).
 
@@ -33,47 +34,77 @@ fn vs_main(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
     return vec4<f32>(uv * 2.0 - 1.0, 0.0, 1.0);
 }
 
-// (min, max) of `r` and the 2×2 map texels around `at`.
-fn widen(r: vec2<f32>, at: vec2<f32>) -> vec2<f32> {
-    let d = textureGather(depth_map, depth_sampler, at);
-    return vec2<f32>(min(r.x, min(min(d.x, d.y), min(d.z, d.w))),
-                     max(r.y, max(max(d.x, d.y), max(d.z, d.w))));
+// `z` or, where the step b → c is a caster's edge, the depth of its near side if nearer; two
+// lines at once. A step is an edge where it breaks the local slope: it differs by more than
+// the gap from both of its neighbouring steps (a → b, c → e). A smooth surface turned far
+// from the light has large but nearly equal steps and is no edge however steep; a silhouette
+// over what lies behind it (or over nothing: the cleared depth 1) breaks the slope on both
+// sides.
+fn edge(z: f32, a: vec2<f32>, b: vec2<f32>, c: vec2<f32>, e: vec2<f32>) -> f32 {
+    let s = c - b;
+    let broken = min(abs(s - (b - a)), abs(s - (e - c))) > vec2<f32>(jump.edge_gap);
+    let near = select(vec2<f32>(2.0), min(b, c), broken);
+    return min(z, min(near.x, near.y));
+}
+
+// `z` and the nearest edge among the steps of a strip of 2 × 12 map texels: six gathers `at`,
+// `at` + `along`, … (two texels apart), each turned by `turn` so that .w, .z are the first
+// line's texels and .x, .y the second's, in order along the strip. Each line's nine middle
+// steps are tested; its end texels only give the end steps their neighbours.
+fn strip(z: f32, at: vec2<f32>, along: vec2<f32>, turn: bool) -> f32 {
+    var g0 = textureGather(depth_map, depth_sampler, at);
+    var g1 = textureGather(depth_map, depth_sampler, at + along);
+    var g2 = textureGather(depth_map, depth_sampler, at + 2.0 * along);
+    var g3 = textureGather(depth_map, depth_sampler, at + 3.0 * along);
+    var g4 = textureGather(depth_map, depth_sampler, at + 4.0 * along);
+    var g5 = textureGather(depth_map, depth_sampler, at + 5.0 * along);
+    if (turn) {
+        // A column strip: the left column is .w, .x and the right .z, .y of each gather.
+        g0 = g0.zyxw;
+        g1 = g1.zyxw;
+        g2 = g2.zyxw;
+        g3 = g3.zyxw;
+        g4 = g4.zyxw;
+        g5 = g5.zyxw;
+    }
+    var r = z;
+    r = edge(r, g0.wx, g0.zy, g1.wx, g1.zy);
+    r = edge(r, g0.zy, g1.wx, g1.zy, g2.wx);
+    r = edge(r, g1.wx, g1.zy, g2.wx, g2.zy);
+    r = edge(r, g1.zy, g2.wx, g2.zy, g3.wx);
+    r = edge(r, g2.wx, g2.zy, g3.wx, g3.zy);
+    r = edge(r, g2.zy, g3.wx, g3.zy, g4.wx);
+    r = edge(r, g3.wx, g3.zy, g4.wx, g4.zy);
+    r = edge(r, g3.zy, g4.wx, g4.zy, g5.wx);
+    r = edge(r, g4.wx, g4.zy, g5.wx, g5.zy);
+    return r;
 }
 
 @fragment
 fn fs_seed(@builtin(position) at: vec4<f32>) -> @location(0) vec4<f32> {
     let size = jump.grid;
+    // The block's centre: a texel corner (block texels 0…7, the corner at 4).
     let centre = at.xy / size;
-    // 5×5 gathers two map texels apart: the 8×8 block and a one-texel border.
-    let step = vec2<f32>(2.0 / (size * jump.block));
-    var r = vec2<f32>(1.0, 0.0);
-    r = widen(r, centre + vec2<f32>(-2.0, -2.0) * step);
-    r = widen(r, centre + vec2<f32>(-1.0, -2.0) * step);
-    r = widen(r, centre + vec2<f32>(0.0, -2.0) * step);
-    r = widen(r, centre + vec2<f32>(1.0, -2.0) * step);
-    r = widen(r, centre + vec2<f32>(2.0, -2.0) * step);
-    r = widen(r, centre + vec2<f32>(-2.0, -1.0) * step);
-    r = widen(r, centre + vec2<f32>(-1.0, -1.0) * step);
-    r = widen(r, centre + vec2<f32>(0.0, -1.0) * step);
-    r = widen(r, centre + vec2<f32>(1.0, -1.0) * step);
-    r = widen(r, centre + vec2<f32>(2.0, -1.0) * step);
-    r = widen(r, centre + vec2<f32>(-2.0, 0.0) * step);
-    r = widen(r, centre + vec2<f32>(-1.0, 0.0) * step);
-    r = widen(r, centre + vec2<f32>(0.0, 0.0) * step);
-    r = widen(r, centre + vec2<f32>(1.0, 0.0) * step);
-    r = widen(r, centre + vec2<f32>(2.0, 0.0) * step);
-    r = widen(r, centre + vec2<f32>(-2.0, 1.0) * step);
-    r = widen(r, centre + vec2<f32>(-1.0, 1.0) * step);
-    r = widen(r, centre + vec2<f32>(0.0, 1.0) * step);
-    r = widen(r, centre + vec2<f32>(1.0, 1.0) * step);
-    r = widen(r, centre + vec2<f32>(2.0, 1.0) * step);
-    r = widen(r, centre + vec2<f32>(-2.0, 2.0) * step);
-    r = widen(r, centre + vec2<f32>(-1.0, 2.0) * step);
-    r = widen(r, centre + vec2<f32>(0.0, 2.0) * step);
-    r = widen(r, centre + vec2<f32>(1.0, 2.0) * step);
-    r = widen(r, centre + vec2<f32>(2.0, 2.0) * step);
-    if (r.y - r.x > jump.edge_gap) {
-        return vec4<f32>(centre, r.x, 1.0);
+    let texel = 1.0 / (size * jump.block);
+    // The 10×10 of the block and its one-texel border (texels −1…8; a step into a
+    // neighbour's block seeds both), each line with one more texel at either end: five strips
+    // of two rows (−1/0, 1/2, …, 7/8) along x, then five of two columns along y.
+    let x = vec2<f32>(2.0 * texel, 0.0);
+    let y = vec2<f32>(0.0, 2.0 * texel);
+    let first = centre - 5.0 * vec2<f32>(texel);
+    var z = 2.0;
+    z = strip(z, vec2<f32>(first.x, centre.y - 4.0 * texel), x, false);
+    z = strip(z, vec2<f32>(first.x, centre.y - 2.0 * texel), x, false);
+    z = strip(z, vec2<f32>(first.x, centre.y), x, false);
+    z = strip(z, vec2<f32>(first.x, centre.y + 2.0 * texel), x, false);
+    z = strip(z, vec2<f32>(first.x, centre.y + 4.0 * texel), x, false);
+    z = strip(z, vec2<f32>(centre.x - 4.0 * texel, first.y), y, true);
+    z = strip(z, vec2<f32>(centre.x - 2.0 * texel, first.y), y, true);
+    z = strip(z, vec2<f32>(centre.x, first.y), y, true);
+    z = strip(z, vec2<f32>(centre.x + 2.0 * texel, first.y), y, true);
+    z = strip(z, vec2<f32>(centre.x + 4.0 * texel, first.y), y, true);
+    if (z <= 1.0) {
+        return vec4<f32>(centre, z, 1.0);
     }
     return vec4<f32>(0.0);
 }

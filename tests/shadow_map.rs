@@ -229,3 +229,149 @@ fn shadowed_frames_stay_finite_and_non_negative_in_f16_under_every_model() {
         }
     }
 }
+
+/// A ball of skin lit from the side, drawn through the real renderer with the ball casting
+/// into the key light's shadow map and with nothing casting: a convex body shadows nothing
+/// of itself, so where it faces the light the two frames agree. Near the terminator the
+/// ball turns away from the light and its depth in the map steps by tens of texels' worth
+/// between neighbours — the penumbra map must not take such a smooth, steep surface for a
+/// caster's edge and bleed or darken around it (the head's false edges, issue 26).
+#[test]
+fn a_ball_lit_at_grazing_incidence_has_no_penumbra() {
+    use dermis_core::anim::Pose;
+    use dermis_core::asset::shapes::sphere_model;
+    use dermis_core::render::{Offscreen, Renderer};
+    use dermis_core::scene::{DrawSet, FramePacket, Light, Roles, SubjectPose};
+    use dermis_core::shading::material::SKIN1;
+    const N: u32 = 256;
+    let (r, far) = (0.05f32, 1000.0f32);
+    let gpu = Gpu::headless().unwrap_or_else(|e| panic!("{e}"));
+    let mut renderer = Renderer::new(&gpu, wgpu::TextureFormat::Rgba16Float);
+    renderer.set_clear(wgpu::Color::BLACK);
+    renderer.resize(&gpu, (N, N));
+    let target = Offscreen::with_format(&gpu, N, N, wgpu::TextureFormat::Rgba16Float);
+    // Thick enough that nothing shows through it from behind.
+    let model = sphere_model(r, 2.0 * r);
+    renderer
+        .load_character(&gpu, &model, &Roles::medium(&SKIN1))
+        .unwrap_or_else(|e| panic!("{e}"));
+    let mut pose = Pose::new(&model);
+    pose.update_world(&model);
+    // The light along +x (a little above), the camera along +z: the terminator runs down
+    // the middle of the image, the lit half on the right.
+    let to_light = Vec3::new(1.0, 0.15, 0.0).normalize();
+    let view = glam::camera::rh::view::look_at_mat4(Vec3::Z, Vec3::ZERO, Vec3::Y);
+    let h = 1.05 * r;
+    let proj = glam::camera::rh::proj::directx::orthographic(-h, h, -h, h, 0.01, 10.0);
+    let frame_view = FrameView {
+        view_proj: proj * view,
+        camera_pos: Vec3::Z,
+        light: Light {
+            position: to_light * far,
+            intensity: far * far,
+            color: Vec3::ONE,
+            ambient: Vec3::ZERO,
+        },
+        exposure: 1.0,
+    };
+    let mut shot = |casts: bool| {
+        renderer.set_shadow_scene(&gpu, casts, &[], None, SHADOW_MAP_SIZE);
+        let packet = FramePacket {
+            subject: Some(SubjectPose {
+                model: &model,
+                pose: &pose,
+                world: Mat4::IDENTITY,
+            }),
+            ..FramePacket::new(
+                (N, N),
+                frame_view,
+                DrawSet {
+                    shading: Some(ShadingModel::Preintegrated),
+                    character: true,
+                    props: false,
+                    ui: false,
+                },
+            )
+        };
+        let frame = renderer.prepare(&gpu, &packet);
+        assert_eq!(frame.shadow.drawn, casts);
+        renderer.draw_offscreen(&gpu, &target, &frame);
+        target.read_f16(&gpu)
+    };
+    let (cast, free) = (shot(true), shot(false));
+    // Per band of n·l on the lit side seen at n·v ≥ 0.3: the largest change of the red
+    // channel (the one the penumbra spreads furthest).
+    let bands = [0.02f32, 0.05, 0.1, 0.2, 0.4, 1.01];
+    let mut worst = [0.0f32; 5];
+    let mut counts = [0usize; 5];
+    for (i, (a, b)) in cast.iter().zip(&free).enumerate() {
+        let x = ((i as u32 % N) as f32 + 0.5) / N as f32 * 2.0 * h - h;
+        let y = h - ((i as u32 / N) as f32 + 0.5) / N as f32 * 2.0 * h;
+        let q = r * r - x * x - y * y;
+        if q <= 0.0 || q.sqrt() / r < 0.3 {
+            continue;
+        }
+        let n = Vec3::new(x, y, q.sqrt()) / r;
+        let nl = n.dot(to_light);
+        let Some(k) = bands.windows(2).position(|w| nl >= w[0] && nl < w[1]) else {
+            continue;
+        };
+        counts[k] += 1;
+        worst[k] = worst[k].max((a[0] / b[0].max(1e-6) - 1.0).abs());
+    }
+    println!("n·l bands {bands:?}: pixels {counts:?}, largest |cast/free − 1| {worst:?}");
+    assert!(counts.iter().all(|&c| c > 20), "{counts:?}");
+    for (k, w) in worst.iter().enumerate() {
+        assert!(
+            *w < 0.05,
+            "n·l {}–{}: the ball's own map changes its lit side by {w}",
+            bands[k],
+            bands[k + 1]
+        );
+    }
+}
+
+/// The showroom's close-up (the game's own camera and orbiting key light, the renderer's fit
+/// around the runner): the key light's map is cropped to what the camera frames wherever that
+/// saves texels — with the light in front, where the showroom starts, its texel at the runner
+/// is at most 0.8 of the uncropped 3 mm (the whole body and a margin) — never coarser, and
+/// every point of the runner's bound the camera sees stays inside the map.
+#[test]
+fn the_showroom_close_up_crops_the_shadow_map_to_what_it_sees() {
+    use dermis_core::app::showroom::{framing, orbit_light, LIGHT_PERIOD_S};
+    use dermis_core::render::ShadowView;
+    use dermis_core::scene::CHARACTER;
+    use dermis_core::ui::Rect;
+    let feet = Vec3::ZERO;
+    let (centre, r) = CHARACTER.sphere_at(feet);
+    // The renderer's margin for a posed subject (renderer.rs, POSE_MARGIN).
+    let r = 1.25 * r;
+    let camera = framing(feet, 16.0 / 9.0, Rect::new(0.0, 0.0, 0.62, 1.0)).view_proj(16.0 / 9.0);
+    let mut texels = Vec::new();
+    for k in 0..16 {
+        let light = orbit_light(feet, LIGHT_PERIOD_S * k as f32 / 16.0);
+        let fit = ShadowView::fit(light, centre, r, SHADOW_MAP_SIZE);
+        let crop = fit.cropped_to(camera, centre, r);
+        assert!(crop.texel_m <= fit.texel_m, "light {light}");
+        texels.push((fit.texel_m * 1e3, crop.texel_m * 1e3));
+        // Points of the runner's sphere on a grid, those the camera sees: inside the map.
+        let n = 12;
+        for (i, j, l) in (0..n * n * n).map(|q| (q % n, q / n % n, q / (n * n))) {
+            let f = |a: usize| (a as f32 + 0.5) / n as f32 * 2.0 - 1.0;
+            let p = centre + Vec3::new(f(i), f(j), f(l)) * r;
+            let seen = camera * p.extend(1.0);
+            let s = seen.truncate() / seen.w;
+            if p.distance(centre) > r || seen.w <= 0.0 || s.x.abs() > 1.0 || s.y.abs() > 1.0 {
+                continue;
+            }
+            let q = crop.view_proj * p.extend(1.0);
+            let m = q.truncate() / q.w;
+            assert!(
+                m.x.abs() <= 1.0 && m.y.abs() <= 1.0,
+                "light {light}: {p} off the map"
+            );
+        }
+    }
+    println!("showroom, texel at the runner over a turn of the light (mm, uncropped → cropped): {texels:.2?}");
+    assert!(texels[0].1 <= 0.8 * texels[0].0, "{texels:?}");
+}

@@ -139,7 +139,7 @@ impl Renderer {
             (split, subject) = (None, None);
         }
         let view = packet.view;
-        let shadow = self.shadow_view(view.light.position);
+        let shadow = self.shadow_view(view.light.position, view.view_proj);
         let output = OutputMode::for_format(self.res.format, view.exposure);
         let mut frame = PreparedFrame {
             size: packet.viewport,
@@ -183,8 +183,9 @@ impl Renderer {
     }
 
     /// This frame's shadow view for a light at `light` ([`ShadowView::NONE`] when nothing
-    /// casts): fitted to the measurement scene's sphere, else the drawn subject's.
-    fn shadow_view(&self, light: Vec3) -> ShadowView {
+    /// casts): fitted to the measurement scene's sphere, else to the drawn subject's and
+    /// cropped to what the camera `camera` sees of it.
+    fn shadow_view(&self, light: Vec3, camera: glam::Mat4) -> ShadowView {
         let res = &self.res;
         let Some(maps) = &res.light_maps else {
             return ShadowView::NONE;
@@ -193,11 +194,14 @@ impl Renderer {
         if !(subject || res.occluder.is_some()) {
             return ShadowView::NONE;
         }
+        if let Some((centre, radius)) = res.shadow_fit {
+            return ShadowView::fit(light, centre, radius, maps.size);
+        }
         let (centre, radius) = res
-            .shadow_fit
-            .or_else(|| res.subjects.world_sphere(POSE_MARGIN))
+            .subjects
+            .world_sphere(POSE_MARGIN)
             .unwrap_or(CHARACTER.sphere_at(Vec3::ZERO));
-        ShadowView::fit(light, centre, radius, maps.size)
+        ShadowView::fit(light, centre, radius, maps.size).cropped_to(camera, centre, radius)
     }
 
     /// Records `frame` (see the module docs): the light's maps in passes of their own, then

@@ -1,17 +1,24 @@
 //! The key light's shadow frustum for a frame: fitted to the casters' bounding sphere, so the
 //! map's texels land where shadows can fall — a shadow of something inside the sphere lies
-//! inside the cone of rays through it, whatever receives it. A light far away compared with
-//! the sphere (a measurement scene's directional light) gets an orthographic frustum. Plain
-//! data: `Renderer::prepare` fits it, the shadow-map pass draws from it and receivers read it
+//! inside the cone of rays through it, whatever receives it — then cropped to the part of
+//! that cone the camera sees ([`ShadowView::cropped_to`]): a close-up of the chest spends the
+//! map on the chest, not on the legs out of the frame. A light far away compared with the
+//! sphere (a measurement scene's directional light) gets an orthographic frustum. Plain data:
+//! `Renderer::prepare` fits it, the shadow-map pass draws from it and receivers read it
 //! through the frame uniform.
 
-use glam::{Mat4, Vec3};
+use glam::{Mat4, Vec2, Vec3, Vec4, Vec4Swizzles};
 
 /// A light farther than this many sphere radii gets an orthographic frustum.
 const ORTHOGRAPHIC_BEYOND: f32 = 20.0;
 /// Normal offset and depth bias, in texels of the map at the casters.
 const NORMAL_OFFSET_TEXELS: f32 = 0.5;
 const DEPTH_BIAS_TEXELS: f32 = 1.0;
+/// A crop magnifies the map at most this much (the penumbra map's reach in grid texels and
+/// the depth's precision per texel stay within what they were made for).
+const MAX_ZOOM: f32 = 8.0;
+/// A crop that would keep more than this fraction of the map's side is not made.
+const MIN_GAIN: f32 = 0.9;
 
 /// What receivers need of this frame's shadow map (the `shadow*` members of the frame uniform).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -91,6 +98,51 @@ impl ShadowView {
         }
     }
 
+    /// This view cropped to what the camera `camera` (world → its clip space, depth 0..1)
+    /// sees of the casters' sphere (`centre`, `radius`): the square of the map around the
+    /// light's image of the camera's frustum between the sphere's nearest and farthest depth
+    /// along the camera's axis, magnified at most [`MAX_ZOOM`]×. A receiver seen beyond that
+    /// depth range, outside the square, is lit (as outside the map). Unchanged where the
+    /// camera sees all of it (or none), or part of that frustum is behind the light.
+    pub fn cropped_to(self, camera: Mat4, centre: Vec3, radius: f32) -> Self {
+        if !self.drawn {
+            return self;
+        }
+        let Some(corners) = seen_part(camera, centre, radius) else {
+            return self;
+        };
+        let (mut lo, mut hi) = (Vec2::splat(f32::MAX), Vec2::splat(f32::MIN));
+        for p in corners {
+            let q = self.view_proj * p.extend(1.0);
+            if q.w.is_nan() || q.w <= 1e-6 {
+                return self;
+            }
+            lo = lo.min(q.xy() / q.w);
+            hi = hi.max(q.xy() / q.w);
+        }
+        let (lo, hi) = (lo.max(Vec2::NEG_ONE), hi.min(Vec2::ONE));
+        let side = (hi - lo).max_element();
+        if !(side > 0.0 && side < 2.0 * MIN_GAIN) {
+            return self;
+        }
+        let zoom = (2.0 / side).min(MAX_ZOOM);
+        let half = 1.0 / zoom;
+        let c = (0.5 * (lo + hi)).clamp(Vec2::splat(half - 1.0), Vec2::splat(1.0 - half));
+        // Clip x' = zoom (x − c.x w): the square [c − half, c + half] onto [−1, 1].
+        let crop = Mat4::from_cols(
+            Vec4::X * zoom,
+            Vec4::Y * zoom,
+            Vec4::Z,
+            Vec4::new(-zoom * c.x, -zoom * c.y, 0.0, 1.0),
+        );
+        Self {
+            view_proj: crop * self.view_proj,
+            texel_m: self.texel_m / zoom,
+            bias: self.bias / zoom,
+            ..self
+        }
+    }
+
     /// How far receivers move their test point off the surface (m): half a texel.
     pub fn normal_offset_m(&self) -> f32 {
         NORMAL_OFFSET_TEXELS * self.texel_m
@@ -100,6 +152,36 @@ impl ShadowView {
     pub fn width_m(&self) -> f32 {
         self.texel_m * self.size as f32
     }
+}
+
+/// The eight corners of the camera's frustum cut to the depths along its axis where the
+/// sphere (`centre`, `radius`) lies; `None` where the matrix does not invert or the sphere is
+/// behind the camera.
+fn seen_part(camera: Mat4, centre: Vec3, radius: f32) -> Option<[Vec3; 8]> {
+    let inverse = camera.inverse();
+    let at = |x: f32, y: f32, z: f32| {
+        let q = inverse * Vec4::new(x, y, z, 1.0);
+        let p = q.xyz() / q.w;
+        p.is_finite().then_some(p)
+    };
+    let (near, far) = (at(0.0, 0.0, 0.0)?, at(0.0, 0.0, 1.0)?);
+    let axis = (far - near).try_normalize()?;
+    let d = (centre - near).dot(axis);
+    if (d + radius).is_nan() || d + radius <= 0.0 {
+        return None;
+    }
+    let depths = [(d - radius).max(0.0), d + radius];
+    let mut out = [Vec3::ZERO; 8];
+    let corners = [(-1.0, -1.0), (1.0, -1.0), (-1.0, 1.0), (1.0, 1.0)];
+    for (k, (x, y)) in corners.into_iter().enumerate() {
+        let (a, b) = (at(x, y, 0.0)?, at(x, y, 1.0)?);
+        let (da, db) = ((a - near).dot(axis), (b - near).dot(axis));
+        for (j, depth) in depths.into_iter().enumerate() {
+            let t = ((depth - da) / (db - da)).clamp(0.0, 1.0);
+            out[2 * k + j] = a + (b - a) * if t.is_finite() { t } else { 0.0 };
+        }
+    }
+    Some(out)
 }
 
 #[cfg(test)]

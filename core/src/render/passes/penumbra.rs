@@ -1,5 +1,5 @@
 //! The penumbra map: the distance from every point of the key light's shadow map to the
-//! nearest caster edge, by jump flooding over a grid a quarter of the map's resolution
+//! nearest caster edge, by jump flooding over a grid an eighth of the map's resolution
 //! (`shaders/penumbra.wgsl`). Models that declare the `penumbra` effect (`preintegrated`) read
 //! it to filter their shadow by the material's profile: a receiver at signed distance d from a
 //! straight shadow edge receives the fraction ESF(d) of the light, the edge-spread function of
@@ -7,9 +7,10 @@
 //! material carries it — also far beyond what a few filter taps reach.
 //!
 //! Built only where the scene reaches such a model; run only in frames that draw one with a
-//! shadow map. Cost: one seed pass (25 gathers per grid texel) and as many jump passes (nine
-//! loads each) as the material's reach needs — distances beyond [`REACH_MM`] are never read —
-//! over the grid: 128² for the game's 1024² map (4 jump passes), independent of the screen.
+//! shadow map. Cost: one seed pass (60 gathers and 180 slope tests per grid texel) and as
+//! many jump passes (nine loads each) as the material's reach needs — distances beyond
+//! [`REACH_MM`] are never read — over the grid: 128² for the game's 1024² map (4 jump
+//! passes), independent of the screen.
 
 use super::{BuildCtx, Pass, Stage};
 use crate::render::layouts;
@@ -24,13 +25,15 @@ pub const BLOCK: u32 = 8;
 pub const REACH_MM: f32 = crate::shading::edge_spread::SPAN_MM as f32;
 /// The grid's texture format: seed uv, depth, valid.
 pub const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
-/// The depth step that makes an edge, in metres along the light: at most 1 cm, and no more
-/// than a smooth surface can span across the seed pass's window ([`EDGE_GAP_TEXELS`]), so a
-/// caster a few millimetres above a finely mapped receiver (a blade over a measured medium, a
-/// finger over a palm) still has its edge.
+/// The depth step that makes an edge, in metres along the light: at most 1 cm, and at most
+/// [`EDGE_GAP_TEXELS`] texel widths, so a caster a few millimetres above a finely mapped
+/// receiver (a blade over a measured medium, a finger over a palm) still has its edge. A step
+/// is measured against the local slope (`edge` in `penumbra.wgsl`: how far it differs from
+/// both neighbouring steps), so a smooth surface turned however far from the light, whose
+/// steps are large but alike, makes no edge.
 pub const EDGE_GAP_M: f32 = 0.01;
-/// The same in the map's texel widths: a continuous surface turned up to 80° from the light
-/// spans 10 · tan 80° ≈ 57 texel widths of depth over the seed pass's 10 texels.
+/// The same in the map's texel widths (what a surface turned 80° from the light spans over
+/// ten texels: the bound of the seed pass's former min–max test, kept as the gap's scale).
 pub const EDGE_GAP_TEXELS: f32 = 57.0;
 
 /// The edge gap (m) for a shadow map of `texel_m` texels.
