@@ -115,7 +115,7 @@ impl ShadowView {
     /// outside the map). Unchanged where that would not gain, or part of either piece is
     /// behind the light.
     pub fn cropped_to(self, camera: Mat4, light: Vec3, (lo, hi): (Vec3, Vec3)) -> Self {
-        if !self.drawn || !(lo.is_finite() && hi.is_finite() && light.is_finite()) {
+        if !(self.drawn && lo.is_finite() && hi.is_finite() && light.is_finite()) {
             return self;
         }
         let corners = box_corners(lo, hi);
