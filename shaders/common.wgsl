@@ -98,7 +98,14 @@ fn light_visible_coord(c: vec4<f32>) -> f32 {
     if (c.w < 0.5) {
         return 1.0;
     }
-    return textureSampleCompareLevel(shadow_map, shadow_sampler, c.xy, c.z - frame.shadow_bias);
+    // Four bilinear comparisons on a square (SHADOW_RAMP_TEXELS − 1) texels wide: a tent, so
+    // across a straight edge the visibility ramps linearly over SHADOW_RAMP_TEXELS texels.
+    let h = 0.5 * (SHADOW_RAMP_TEXELS - 1.0) * frame.shadow_texel;
+    let z = c.z - frame.shadow_bias;
+    return 0.25 * (textureSampleCompareLevel(shadow_map, shadow_sampler, c.xy + vec2<f32>(-h, -h), z)
+        + textureSampleCompareLevel(shadow_map, shadow_sampler, c.xy + vec2<f32>(h, -h), z)
+        + textureSampleCompareLevel(shadow_map, shadow_sampler, c.xy + vec2<f32>(-h, h), z)
+        + textureSampleCompareLevel(shadow_map, shadow_sampler, c.xy + vec2<f32>(h, h), z));
 }
 
 // The key light's visibility at `p`, moved off its surface by `offset` (see shadow_coord).

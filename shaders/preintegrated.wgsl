@@ -29,7 +29,7 @@ fn slab_u(t_mm: f32) -> f32 {
 // The key light's visibility per channel. `v` is the shadow map's test at this point; near the
 // edge of a caster's shadow it becomes the edge-spread function of the material's kernel at the
 // point's signed distance from that edge (the penumbra map gives the nearest edge of a caster
-// in front of the point; within the test's one-texel ramp its fraction places the edge more
+// in front of the point; within the test's ramp its fraction places the edge more
 // finely): light bleeds into the shadow as far as the material carries it, red furthest.
 fn penumbra(s: Surface, v: f32) -> vec3<f32> {
     let nl = dot(s.n, s.l);
@@ -46,10 +46,10 @@ fn penumbra(s: Surface, v: f32) -> vec3<f32> {
     // Across the light's image plane, stretched onto the surface by the incidence.
     let to_mm = frame.shadow_width * 1000.0 / max(nl, 0.25);
     let texel_mm = frame.shadow_texel * to_mm;
-    var d = select(-1.0, 1.0, v >= 0.5) * max(length(seed.xy - c.xy) * to_mm, 0.5 * texel_mm);
+    var d = select(-1.0, 1.0, v >= 0.5) * max(length(seed.xy - c.xy) * to_mm, 0.5 * SHADOW_RAMP_TEXELS * texel_mm);
     if (v > 0.0 && v < 1.0) {
-        // The bilinear test ramps over one texel.
-        d = (v - 0.5) * texel_mm;
+        // The filtered test ramps linearly over SHADOW_RAMP_TEXELS texels.
+        d = (v - 0.5) * SHADOW_RAMP_TEXELS * texel_mm;
     }
     let t = sign(d) * sqrt(min(abs(d) / PENUMBRA_SPAN_MM, 1.0));
     return exp2(lut_row(0.5 * (t + 1.0), LUT_PENUMBRA_ROW).rgb);

@@ -9,10 +9,12 @@ mod clips;
 mod fit;
 mod palette;
 mod pose;
+mod reach;
 mod sample;
 
 pub use clips::{clip_by_role, find_clips, Clips, Role as ClipRole};
 pub use fit::{bind_pose_bounds, fit_to_height, Fit};
 pub use palette::{first_skinned_mesh, joint_palette, skin_positions};
 pub use pose::Pose;
+pub use reach::JointBoxes;
 pub use sample::{sample_quat, sample_vec3};

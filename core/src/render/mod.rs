@@ -51,7 +51,7 @@ pub use pipelines::{build_shader_source, shader_source, CharacterPipelines, Pipe
 pub use prepared::{Drawn, PassCtx, PassFrame, PreparedFrame, RenderStats, SubjectDraw};
 pub use readback::{read_buffer, read_mapped};
 pub use renderer::Renderer;
-pub use shadow_view::ShadowView;
+pub use shadow_view::{ShadowView, SHADOW_RAMP_TEXELS};
 pub use skinned::SkinnedGpu;
 pub use surface::{choose_format, FrameStatus, SurfaceOptions, SurfaceTarget};
 pub use targets::{Targets, DEPTH_FORMAT, MSAA_SAMPLES};

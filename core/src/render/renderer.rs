@@ -183,8 +183,8 @@ impl Renderer {
     }
 
     /// This frame's shadow view for a light at `light` ([`ShadowView::NONE`] when nothing
-    /// casts): fitted to the measurement scene's sphere, else to the drawn subject's and
-    /// cropped to what the camera `camera` sees of it.
+    /// casts): fitted to the measurement scene's sphere, else to the sphere around the drawn
+    /// subject's posed box and cropped to the shadows the camera `camera` can see of it.
     fn shadow_view(&self, light: Vec3, camera: glam::Mat4) -> ShadowView {
         let res = &self.res;
         let Some(maps) = &res.light_maps else {
@@ -197,11 +197,18 @@ impl Renderer {
         if let Some((centre, radius)) = res.shadow_fit {
             return ShadowView::fit(light, centre, radius, maps.size);
         }
-        let (centre, radius) = res
-            .subjects
-            .world_sphere(POSE_MARGIN)
-            .unwrap_or(CHARACTER.sphere_at(Vec3::ZERO));
-        ShadowView::fit(light, centre, radius, maps.size).cropped_to(camera, centre, radius)
+        // The posed box where the subject has been posed, else its bind sphere and a margin.
+        let (centre, radius, bounds) = match res.subjects.posed_box() {
+            Some((lo, hi)) => (0.5 * (lo + hi), 0.5 * (hi - lo).length(), (lo, hi)),
+            None => {
+                let (c, r) = res
+                    .subjects
+                    .world_sphere(POSE_MARGIN)
+                    .unwrap_or(CHARACTER.sphere_at(Vec3::ZERO));
+                (c, r, (c - Vec3::splat(r), c + Vec3::splat(r)))
+            }
+        };
+        ShadowView::fit(light, centre, radius, maps.size).cropped_to(camera, light, bounds)
     }
 
     /// Records `frame` (see the module docs): the light's maps in passes of their own, then
@@ -401,6 +408,12 @@ impl Renderer {
     /// The subject drawn last (0: the character).
     pub fn subject(&self) -> usize {
         self.res.subjects.active_slot()
+    }
+
+    /// The world box of the drawn subject as last posed (every vertex inside): what the
+    /// shadow map is fitted to.
+    pub fn subject_box(&self) -> Option<(Vec3, Vec3)> {
+        self.res.subjects.posed_box()
     }
 
     /// Triangles of the subject drawn.

@@ -72,6 +72,11 @@ impl Subjects {
         self.slots.iter()
     }
 
+    /// The box (world) of the active subject as last posed: every vertex lies inside.
+    pub fn posed_box(&self) -> Option<(Vec3, Vec3)> {
+        self.active()?.gpu.posed
+    }
+
     /// The active subject's bounding sphere in the world where it was last placed, grown by
     /// `margin` for what a pose may reach beyond the bind pose.
     pub fn world_sphere(&self, margin: f32) -> Option<(Vec3, f32)> {

@@ -11,9 +11,15 @@ use glam::{Mat4, Vec2, Vec3, Vec4, Vec4Swizzles};
 
 /// A light farther than this many sphere radii gets an orthographic frustum.
 const ORTHOGRAPHIC_BEYOND: f32 = 20.0;
-/// Normal offset and depth bias, in texels of the map at the casters.
-const NORMAL_OFFSET_TEXELS: f32 = 0.5;
+/// Normal offset and depth bias, in texels of the map at the casters. The normal offset: half the filter's ramp, as far as its outer taps reach (a quarter
+/// of it: the grazing side of a ball shadows itself, 9 % at n·l 0.02–0.05).
+const NORMAL_OFFSET_TEXELS: f32 = 0.5 * SHADOW_RAMP_TEXELS;
 const DEPTH_BIAS_TEXELS: f32 = 1.0;
+/// The shadow test's ramp across a straight edge, in map texels: `light_visible_coord`
+/// (`shaders/common.wgsl`) averages bilinear comparisons half this less a half texel either
+/// side, so its visibility rises linearly over this width; `penumbra()` reads the edge's
+/// place from it.
+pub const SHADOW_RAMP_TEXELS: f32 = 2.0;
 /// A crop magnifies the map at most this much (the penumbra map's reach in grid texels and
 /// the depth's precision per texel stay within what they were made for).
 const MAX_ZOOM: f32 = 8.0;
@@ -98,31 +104,45 @@ impl ShadowView {
         }
     }
 
-    /// This view cropped to what the camera `camera` (world → its clip space, depth 0..1)
-    /// sees of the casters' sphere (`centre`, `radius`): the square of the map around the
-    /// light's image of the camera's frustum between the sphere's nearest and farthest depth
-    /// along the camera's axis, magnified at most [`MAX_ZOOM`]×. A receiver seen beyond that
-    /// depth range, outside the square, is lit (as outside the map). Unchanged where the
-    /// camera sees all of it (or none), or part of that frustum is behind the light.
-    pub fn cropped_to(self, camera: Mat4, centre: Vec3, radius: f32) -> Self {
-        if !self.drawn {
+    /// This view cropped to the shadows the camera `camera` (world → its clip space, depth
+    /// 0..1) can see, for casters inside the box `lo..hi` lit from `light`: a visible shadow
+    /// falls on a receiver seen by the camera whose ray to the light crosses the box, so its
+    /// place in the map lies both in the light's image of the box and in the light's image of
+    /// the camera's frustum cut to the depths (along the camera's axis) where such receivers
+    /// can be — the box, and the box's shadow on the floor (the plane through its bottom;
+    /// nothing is received below it). The map becomes the square around the intersection of
+    /// the two images, magnified at most [`MAX_ZOOM`]×; a receiver outside it is lit (as
+    /// outside the map). Unchanged where that would not gain, or part of either piece is
+    /// behind the light.
+    pub fn cropped_to(self, camera: Mat4, light: Vec3, (lo, hi): (Vec3, Vec3)) -> Self {
+        if !(self.drawn && lo.is_finite() && hi.is_finite() && light.is_finite()) {
             return self;
         }
-        let Some(corners) = seen_part(camera, centre, radius) else {
+        let corners = box_corners(lo, hi);
+        let Some((box_lo, box_hi)) = self.image_of(&corners) else {
             return self;
         };
-        let (mut lo, mut hi) = (Vec2::splat(f32::MAX), Vec2::splat(f32::MIN));
-        for p in corners {
-            let q = self.view_proj * p.extend(1.0);
-            if q.w.is_nan() || q.w <= 1e-6 {
+        // Where the box's corners' shadows fall on the floor (an upward ray: no floor).
+        let mut reach = corners.to_vec();
+        for c in corners {
+            let down = light.y - c.y;
+            if c.y > lo.y && down <= 1e-4 {
                 return self;
             }
-            lo = lo.min(q.xy() / q.w);
-            hi = hi.max(q.xy() / q.w);
+            if c.y > lo.y {
+                reach.push(light + (c - light) * ((light.y - lo.y) / down));
+            }
         }
-        let (lo, hi) = (lo.max(Vec2::NEG_ONE), hi.min(Vec2::ONE));
+        let Some(slab) = seen_part(camera, &reach) else {
+            return self;
+        };
+        let Some((seen_lo, seen_hi)) = self.image_of(&slab) else {
+            return self;
+        };
+        let lo = box_lo.max(seen_lo).max(Vec2::NEG_ONE);
+        let hi = box_hi.min(seen_hi).min(Vec2::ONE);
         let side = (hi - lo).max_element();
-        if !(side > 0.0 && side < 2.0 * MIN_GAIN) {
+        if !(side > 0.0 && side < 2.0 * MIN_GAIN) || (hi - lo).min_element() <= 0.0 {
             return self;
         }
         let zoom = (2.0 / side).min(MAX_ZOOM);
@@ -143,7 +163,22 @@ impl ShadowView {
         }
     }
 
-    /// How far receivers move their test point off the surface (m): half a texel.
+    /// The rectangle (the map's clip x, y) around the light's image of `points`; `None` where
+    /// one is behind the light.
+    fn image_of(&self, points: &[Vec3]) -> Option<(Vec2, Vec2)> {
+        let (mut lo, mut hi) = (Vec2::splat(f32::MAX), Vec2::splat(f32::MIN));
+        for p in points {
+            let q = self.view_proj * p.extend(1.0);
+            if q.w.is_nan() || q.w <= 1e-6 {
+                return None;
+            }
+            lo = lo.min(q.xy() / q.w);
+            hi = hi.max(q.xy() / q.w);
+        }
+        Some((lo, hi))
+    }
+
+    /// How far receivers move their test point off the surface (m): half the ramp.
     pub fn normal_offset_m(&self) -> f32 {
         NORMAL_OFFSET_TEXELS * self.texel_m
     }
@@ -154,10 +189,15 @@ impl ShadowView {
     }
 }
 
-/// The eight corners of the camera's frustum cut to the depths along its axis where the
-/// sphere (`centre`, `radius`) lies; `None` where the matrix does not invert or the sphere is
-/// behind the camera.
-fn seen_part(camera: Mat4, centre: Vec3, radius: f32) -> Option<[Vec3; 8]> {
+fn box_corners(lo: Vec3, hi: Vec3) -> [Vec3; 8] {
+    std::array::from_fn(|k| {
+        Vec3::select(glam::BVec3::new(k & 1 != 0, k & 2 != 0, k & 4 != 0), hi, lo)
+    })
+}
+
+/// The eight corners of the camera's frustum cut to the depths along its axis that `points`
+/// span; `None` where the matrix does not invert or every point is behind the camera.
+fn seen_part(camera: Mat4, points: &[Vec3]) -> Option<[Vec3; 8]> {
     let inverse = camera.inverse();
     let at = |x: f32, y: f32, z: f32| {
         let q = inverse * Vec4::new(x, y, z, 1.0);
@@ -166,11 +206,16 @@ fn seen_part(camera: Mat4, centre: Vec3, radius: f32) -> Option<[Vec3; 8]> {
     };
     let (near, far) = (at(0.0, 0.0, 0.0)?, at(0.0, 0.0, 1.0)?);
     let axis = (far - near).try_normalize()?;
-    let d = (centre - near).dot(axis);
-    if (d + radius).is_nan() || d + radius <= 0.0 {
+    let (mut d0, mut d1) = (f32::MAX, f32::MIN);
+    for p in points {
+        let d = (*p - near).dot(axis);
+        d0 = d0.min(d);
+        d1 = d1.max(d);
+    }
+    if d1.is_nan() || d1 <= 0.0 {
         return None;
     }
-    let depths = [(d - radius).max(0.0), d + radius];
+    let depths = [d0.max(0.0), d1];
     let mut out = [Vec3::ZERO; 8];
     let corners = [(-1.0, -1.0), (1.0, -1.0), (-1.0, 1.0), (1.0, 1.0)];
     for (k, (x, y)) in corners.into_iter().enumerate() {

@@ -4,12 +4,12 @@
 //! Created once at load; the shading models' constants are the renderer's
 //! ([`super::model_gpu`]), shared by every subject.
 
-use glam::Mat4;
+use glam::{Mat4, Vec3};
 
 use super::layouts::Layouts;
 use super::material_gpu::{MaterialGpu, ModelTextures};
 use super::mesh::GpuMesh;
-use crate::anim::{joint_palette, Pose};
+use crate::anim::{joint_palette, JointBoxes, Pose};
 use crate::asset::{Model, MAX_JOINTS};
 use crate::scene::{Role, Roles};
 
@@ -28,6 +28,8 @@ struct SkinGpu {
     group: wgpu::BindGroup,
     /// CPU scratch for the palette (reused every frame, no allocation).
     palette: Vec<Mat4>,
+    /// Where its joints' vertices are in bind space (for the posed box).
+    reach: JointBoxes,
 }
 
 pub struct SkinnedGpu {
@@ -39,6 +41,8 @@ pub struct SkinnedGpu {
     pub normal_mapped: bool,
     /// Some skin part has none.
     pub plain: bool,
+    /// The world box of every vertex as last posed ([`Self::update_pose`]); `None` before.
+    pub posed: Option<(Vec3, Vec3)>,
 }
 
 impl SkinnedGpu {
@@ -81,10 +85,12 @@ impl SkinnedGpu {
                         buffer,
                         group,
                         palette: vec![Mat4::IDENTITY; model.skins[skin].joints.len()],
+                        reach: JointBoxes::new(model.skins[skin].joints.len()),
                     });
                     skins.len() - 1
                 }
             };
+            skins[slot].reach.add_mesh(model, mesh);
             for prim in &model.meshes[mesh].primitives {
                 let material = prim.material.and_then(|m| model.materials.get(m));
                 let role = roles.role(prim.material);
@@ -115,6 +121,7 @@ impl SkinnedGpu {
             plain: skin_parts().any(|p| !p.material.normal_mapped),
             parts,
             skins,
+            posed: None,
         })
     }
 
@@ -123,8 +130,8 @@ impl SkinnedGpu {
         &self.parts
     }
 
-    /// Computes the joint palettes for `pose` placed at `world` and uploads them; returns
-    /// the uploads (one per skin).
+    /// Computes the joint palettes for `pose` placed at `world` and uploads them, and the
+    /// posed box ([`Self::posed`]); returns the uploads (one per skin).
     pub fn update_pose(
         &mut self,
         queue: &wgpu::Queue,
@@ -139,6 +146,11 @@ impl SkinnedGpu {
             }
             queue.write_buffer(&skin.buffer, 0, bytemuck::cast_slice(&skin.palette));
         }
+        self.posed = self
+            .skins
+            .iter()
+            .filter_map(|s| s.reach.posed(&s.palette))
+            .reduce(|(a, b), (c, d)| (a.min(c), b.max(d)));
         self.skins.len() as u32
     }
 

@@ -15,7 +15,7 @@ pub enum Const {
 }
 
 /// `(name, value, what it is)` of every shared constant.
-pub fn table() -> [(&'static str, Const, &'static str); 13] {
+pub fn table() -> [(&'static str, Const, &'static str); 14] {
     use preintegrated::{LUT_U, LUT_V, PENUMBRA_ROW, SLAB_SPAN, TEXTURE_ROWS};
     [
         (
@@ -72,6 +72,11 @@ pub fn table() -> [(&'static str, Const, &'static str); 13] {
             "PENUMBRA_SPAN_MM",
             Const::F32(edge_spread::SPAN_MM as f32),
             "the edge-spread row's reach either side of an edge, mm (edge_spread::SPAN_MM)",
+        ),
+        (
+            "SHADOW_RAMP_TEXELS",
+            Const::F32(crate::render::SHADOW_RAMP_TEXELS),
+            "the shadow test's linear ramp across an edge, map texels (render::SHADOW_RAMP_TEXELS)",
         ),
         (
             "LIGHT_D_MIN_M",
