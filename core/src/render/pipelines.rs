@@ -16,6 +16,32 @@ use super::targets::{depth_state, multisample, MSAA_SAMPLES};
 use crate::shader::{compose, ShaderDefs};
 use crate::shading::ShadingModel;
 
+/// A pipeline layout over `groups`, bind groups 0, 1, … in order (`None`: a group the
+/// pipeline leaves unbound).
+pub(crate) fn pipeline_layout(
+    device: &wgpu::Device,
+    label: &str,
+    groups: &[Option<&wgpu::BindGroupLayout>],
+) -> wgpu::PipelineLayout {
+    device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some(label),
+        bind_group_layouts: groups,
+        immediate_size: 0,
+    })
+}
+
+/// A shader module from composed WGSL.
+pub(crate) fn wgsl_module(
+    device: &wgpu::Device,
+    label: &str,
+    source: String,
+) -> wgpu::ShaderModule {
+    device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some(label),
+        source: wgpu::ShaderSource::Wgsl(source.into()),
+    })
+}
+
 /// The composed WGSL of the character shader for `model` (a mesh without a normal map).
 pub fn build_shader_source(model: ShadingModel) -> String {
     shader_source(model, false)
@@ -218,16 +244,16 @@ impl CharacterPipelines {
         first: Option<ShadingModel>,
     ) -> Self {
         let device = dev.device;
-        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("character"),
-            bind_group_layouts: &[
+        let layout = pipeline_layout(
+            device,
+            "character",
+            &[
                 Some(&layouts.frame),
                 Some(&layouts.model),
                 Some(&layouts.skinned),
                 Some(&layouts.material),
             ],
-            immediate_size: 0,
-        });
+        );
         let now: Vec<ShadingModel> = match first.filter(|m| set.models.contains(m)) {
             Some(m) => vec![m],
             None => set.models.clone(),
@@ -290,12 +316,7 @@ fn character_pipeline(
     source: String,
     split: bool,
 ) -> wgpu::RenderPipeline {
-    let module = dev
-        .device
-        .create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some(label),
-            source: wgpu::ShaderSource::Wgsl(source.into()),
-        });
+    let module = wgsl_module(dev.device, label, source);
     pipeline(
         dev,
         layout,

@@ -9,6 +9,7 @@
 //! split variant only where the scene can reach a screen-space model. Per frame the blobs are
 //! staged into buffers reserved at load and uploaded only when they changed.
 
+use crate::render::pipelines::{pipeline_layout, wgsl_module};
 use glam::{Mat4, Vec3};
 
 use super::subsurface::SPLIT_FORMAT;
@@ -188,11 +189,7 @@ pub struct BlobsPass {
 impl BlobsPass {
     fn new(ctx: &BuildCtx) -> Self {
         let device = ctx.device;
-        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("blob shadow"),
-            bind_group_layouts: &[Some(&ctx.layouts.frame)],
-            immediate_size: 0,
-        });
+        let layout = pipeline_layout(device, "blob shadow", &[Some(&ctx.layouts.frame)]);
         let multiply = wgpu::BlendState {
             color: wgpu::BlendComponent {
                 src_factor: wgpu::BlendFactor::Zero,
@@ -210,10 +207,7 @@ impl BlobsPass {
             })
         };
         let build = |split: bool| {
-            let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                label: Some("blob shadow"),
-                source: wgpu::ShaderSource::Wgsl(shader_source(split).into()),
-            });
+            let module = wgsl_module(device, "blob shadow", shader_source(split));
             let untouched = Some(wgpu::ColorTargetState {
                 format: SPLIT_FORMAT,
                 blend: None,

@@ -15,7 +15,7 @@ use crate::asset::Model;
 use crate::render::material_gpu::Variant;
 use crate::render::mesh::vertex_layout;
 use crate::render::passes::subsurface::SPLIT_FORMAT;
-use crate::render::pipelines::{pipeline_with, Surfaces};
+use crate::render::pipelines::{pipeline_layout, pipeline_with, wgsl_module, Surfaces};
 use crate::render::prepared::{Drawn, PassFrame, PreparedFrame};
 use crate::render::resources::Resources;
 use crate::scene::{FramePacket, Role, Roles};
@@ -116,16 +116,16 @@ fn standard_targets(
 impl Pass for CharacterPass {
     fn build(ctx: &BuildCtx) -> Option<Self> {
         let device = ctx.device;
-        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("standard"),
-            bind_group_layouts: &[
+        let layout = pipeline_layout(
+            device,
+            "standard",
+            &[
                 Some(&ctx.layouts.frame),
                 Some(&ctx.layouts.model),
                 Some(&ctx.layouts.skinned),
                 Some(&ctx.layouts.material),
             ],
-            immediate_size: 0,
-        });
+        );
         let splits: &[bool] = if ctx.set.needs_subsurface_pass() {
             &[false, true]
         } else {
@@ -134,10 +134,7 @@ impl Pass for CharacterPass {
         let mut standard = Vec::new();
         for &key in ctx.standard {
             for &split in splits {
-                let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                    label: Some("standard"),
-                    source: wgpu::ShaderSource::Wgsl(standard_source(key, split).into()),
-                });
+                let module = wgsl_module(device, "standard", standard_source(key, split));
                 let (variant, _) = key;
                 let surfaces = Surfaces {
                     cull: (!variant.double_sided).then_some(wgpu::Face::Back),

@@ -15,6 +15,7 @@
 use super::{BuildCtx, Pass, Stage};
 use crate::render::layouts;
 use crate::render::light_maps::{LightMaps, PenumbraGrid};
+use crate::render::pipelines::{pipeline_layout, wgsl_module};
 use crate::render::prepared::{Drawn, PassFrame, PreparedFrame};
 use crate::render::resources::Resources;
 use crate::scene::FramePacket;
@@ -135,15 +136,8 @@ impl PenumbraPass {
         let device = ctx.device;
         let size = grid.size;
         let bind_layout = layout(device);
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("penumbra"),
-            bind_group_layouts: &[Some(&bind_layout)],
-            immediate_size: 0,
-        });
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("penumbra"),
-            source: wgpu::ShaderSource::Wgsl(shader_source().into()),
-        });
+        let pipeline_layout = pipeline_layout(device, "penumbra", &[Some(&bind_layout)]);
+        let module = wgsl_module(device, "penumbra", shader_source());
         let pipeline = |entry: &str| {
             device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
                 label: Some(entry),

@@ -10,7 +10,7 @@ use super::{BuildCtx, Pass, Stage};
 use crate::camera::Frustum;
 use crate::render::layouts::Layouts;
 use crate::render::mesh::{instance_layout, vertex_layout};
-use crate::render::pipelines::{pipeline, targets, PipelineDevice};
+use crate::render::pipelines::{pipeline, pipeline_layout, targets, wgsl_module, PipelineDevice};
 use crate::render::prepared::{Drawn, PassFrame, PreparedFrame};
 use crate::render::prop_gpu::MAX_INSTANCES;
 use crate::render::resources::Resources;
@@ -44,11 +44,11 @@ fn prop_pipeline(
     split: bool,
 ) -> wgpu::RenderPipeline {
     let device = dev.device;
-    let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-        label: Some("prop"),
-        bind_group_layouts: &[Some(&layouts.frame), Some(&layouts.material)],
-        immediate_size: 0,
-    });
+    let layout = pipeline_layout(
+        device,
+        "prop",
+        &[Some(&layouts.frame), Some(&layouts.material)],
+    );
     let defs = ShaderDefs::new().flag("INSTANCED");
     let defs = if split {
         defs.flag("SCREEN_SPACE")
@@ -56,10 +56,7 @@ fn prop_pipeline(
         defs
     };
     let source = compose("prop", &defs).expect("built-in shaders compose");
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some("prop"),
-        source: wgpu::ShaderSource::Wgsl(source.into()),
-    });
+    let module = wgsl_module(device, "prop", source);
     pipeline(
         dev,
         &layout,

@@ -9,6 +9,7 @@ use crate::render::layouts;
 use crate::render::light_maps::{depth_pass, SHADOW_FORMAT};
 use crate::render::mesh::vertex_layout;
 use crate::render::pipelines::PipelineDevice;
+use crate::render::pipelines::{pipeline_layout, wgsl_module};
 use crate::render::prepared::{Drawn, PassFrame, PreparedFrame};
 use crate::render::resources::Resources;
 use crate::scene::FramePacket;
@@ -81,19 +82,16 @@ impl Pass for ShadowMapPass {
             label: Some("empty"),
             entries: &[],
         });
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("shadow caster"),
-            source: wgpu::ShaderSource::Wgsl(caster_shader_source().into()),
-        });
-        let skinned_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("shadow caster"),
-            bind_group_layouts: &[
+        let module = wgsl_module(device, "shadow caster", caster_shader_source());
+        let skinned_layout = pipeline_layout(
+            device,
+            "shadow caster",
+            &[
                 Some(&caster_layout),
                 Some(&empty),
                 Some(&ctx.layouts.skinned),
             ],
-            immediate_size: 0,
-        });
+        );
         let skinned = depth_only(
             ctx.pipelines(),
             &skinned_layout,
@@ -102,11 +100,7 @@ impl Pass for ShadowMapPass {
             &[Some(vertex_layout())],
         );
         let occluder = ctx.occluder.then(|| {
-            let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-                label: Some("shadow occluder"),
-                bind_group_layouts: &[Some(&caster_layout)],
-                immediate_size: 0,
-            });
+            let layout = pipeline_layout(device, "shadow occluder", &[Some(&caster_layout)]);
             depth_only(
                 ctx.pipelines(),
                 &layout,

@@ -13,6 +13,7 @@ use super::{BuildCtx, Pass, Stage};
 use crate::render::layouts::Layouts;
 use crate::render::passes::resolve;
 use crate::render::pipelines::PipelineDevice;
+use crate::render::pipelines::{pipeline_layout, wgsl_module};
 use crate::render::prepared::{Drawn, PassCtx, PassFrame, PreparedFrame};
 use crate::render::resources::Resources;
 use crate::render::targets::{depth_state, multisample, MSAA_SAMPLES};
@@ -154,15 +155,12 @@ impl SubsurfacePass {
                 entry(4, texture),
             ],
         });
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("subsurface pass"),
-            bind_group_layouts: &[Some(&layouts.frame), Some(&layout)],
-            immediate_size: 0,
-        });
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("subsurface pass"),
-            source: wgpu::ShaderSource::Wgsl(shader_source().into()),
-        });
+        let pipeline_layout = pipeline_layout(
+            device,
+            "subsurface pass",
+            &[Some(&layouts.frame), Some(&layout)],
+        );
+        let module = wgsl_module(device, "subsurface pass", shader_source());
         let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some("subsurface pass"),
             layout: Some(&pipeline_layout),

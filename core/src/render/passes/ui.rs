@@ -6,6 +6,7 @@
 
 use super::{BuildCtx, Pass, Stage};
 use crate::render::pipelines::PipelineDevice;
+use crate::render::pipelines::{pipeline_layout, wgsl_module};
 use crate::render::prepared::{Drawn, PassFrame, PreparedFrame};
 use crate::render::resources::Resources;
 use crate::render::targets::{depth_state, multisample, MSAA_SAMPLES};
@@ -125,15 +126,8 @@ impl UiPass {
                 },
             ],
         });
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("ui"),
-            bind_group_layouts: &[Some(&layout)],
-            immediate_size: 0,
-        });
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("ui"),
-            source: wgpu::ShaderSource::Wgsl(ui_shader_source().into()),
-        });
+        let pipeline_layout = pipeline_layout(device, "ui", &[Some(&layout)]);
+        let module = wgsl_module(device, "ui", ui_shader_source());
         let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some("ui"),
             layout: Some(&pipeline_layout),
