@@ -19,6 +19,7 @@ struct VertexIn {
     @location(4) joints: vec4<u32>,
     @location(5) weights: vec4<f32>,
     @location(6) thickness: f32,
+    @location(7) curvature: f32,
 };
 
 struct VertexOut {
@@ -28,6 +29,7 @@ struct VertexOut {
     @location(2) tangent: vec4<f32>,
     @location(3) uv: vec2<f32>,
     @location(4) thickness: f32,
+    @location(5) curvature: f32,
 };
 
 @vertex
@@ -40,7 +42,11 @@ fn vs_main(v: VertexIn) -> VertexOut {
     out.normal = (skin * vec4<f32>(v.normal, 0.0)).xyz;
     out.tangent = vec4<f32>((skin * vec4<f32>(v.tangent.xyz, 0.0)).xyz, v.tangent.w);
     out.uv = v.uv;
-    out.thickness = v.thickness;
+    // Thickness and curvature in the mesh's units, scaled as the skin scales them (a fitted
+    // export).
+    let scale = length((skin * vec4<f32>(safe_normalize(v.normal, vec3<f32>(0.0, 1.0, 0.0)), 0.0)).xyz);
+    out.thickness = v.thickness * scale;
+    out.curvature = v.curvature / max(scale, 1e-6);
     return out;
 }
 
@@ -52,11 +58,8 @@ fn surface_at(in: VertexOut, albedo: vec3<f32>, front: bool) -> Surface {
     normal = select(-normal, normal, front);
 #endif
     var s = make_surface(in.world_pos, normal, in.tangent, albedo, in.thickness);
-    // Curvature radius from screen-space derivatives: how far the surface moves per unit of
-    // normal change across a pixel (large on flat parts, small on fingers and ears).
-    let dn = length(fwidth(in.normal));
-    let dp = length(fwidth(in.world_pos));
-    s.curvature_radius = min(dp / max(dn, 1e-6), FLAT_RADIUS_M);
+    // The mesh's mean curvature (per vertex, from the loader): a concave or flat part is flat.
+    s.curvature_radius = 1.0 / max(in.curvature, 1.0 / FLAT_RADIUS_M);
     return s;
 }
 
