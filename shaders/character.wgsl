@@ -19,7 +19,7 @@ struct VertexIn {
     @location(4) joints: vec4<u32>,
     @location(5) weights: vec4<f32>,
     @location(6) thickness: f32,
-    @location(7) curvature: f32,
+    @location(7) curvature: vec4<f32>,
 };
 
 struct VertexOut {
@@ -44,9 +44,19 @@ fn vs_main(v: VertexIn) -> VertexOut {
     out.uv = v.uv;
     // Thickness and curvature in the mesh's units, scaled as the skin scales them (a fitted
     // export).
-    let scale = length((skin * vec4<f32>(safe_normalize(v.normal, vec3<f32>(0.0, 1.0, 0.0)), 0.0)).xyz);
+    let scale = max(length(out.normal), 1e-6);
     out.thickness = v.thickness * scale;
-    out.curvature = v.curvature / max(scale, 1e-6);
+    // The surface's curvature along the light's direction across it, κ₂ + (a·t)²
+    // (asset::curvature: a turns with the skin, κ goes as 1/scale), where the light is overhead
+    // the mean curvature. Taken per vertex (a's sign is arbitrary; its square is not) and
+    // interpolated.
+    let n = out.normal / scale;
+    let to_light = frame.light_pos - world.xyz;
+    let along = to_light - n * dot(n, to_light);
+    let a = (skin * vec4<f32>(v.curvature.xyz, 0.0)).xyz / (scale * sqrt(scale));
+    let a2 = select(0.5 * dot(a, a), pow(dot(a, along), 2.0) / dot(along, along),
+                    dot(along, along) > 1e-6 * dot(to_light, to_light));
+    out.curvature = v.curvature.w / scale + a2;
     return out;
 }
 
@@ -58,7 +68,7 @@ fn surface_at(in: VertexOut, albedo: vec3<f32>, front: bool) -> Surface {
     normal = select(-normal, normal, front);
 #endif
     var s = make_surface(in.world_pos, normal, in.tangent, albedo, in.thickness);
-    // The mesh's mean curvature (per vertex, from the loader): a concave or flat part is flat.
+    // The mesh's curvature along the light (vs_main); a concave or flat part is flat.
     s.curvature_radius = 1.0 / max(in.curvature, 1.0 / FLAT_RADIUS_M);
     return s;
 }

@@ -5,7 +5,7 @@ use glam::{Mat4, Quat, Vec3};
 
 use super::Material;
 
-/// One vertex as uploaded to the GPU (80 bytes, `#[repr(C)]`).
+/// One vertex as uploaded to the GPU (92 bytes, `#[repr(C)]`).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct Vertex {
@@ -21,9 +21,10 @@ pub struct Vertex {
     /// Local material thickness in metres (glTF attribute `_THICKNESS`): translucency's path,
     /// the OSS depth. Where a mesh has none, ray cast at load ([`super::thickness`]).
     pub thickness: f32,
-    /// Mean curvature of the surface here (1/m; positive where convex), computed at load from
-    /// the mesh ([`super::curvature`]).
-    pub curvature: f32,
+    /// Curvature of the surface here (1/m; positive where convex) as `[a, κ₂]`: the normal
+    /// curvature along a unit tangent t is κ₂ + (a·t)²; computed at load from the mesh
+    /// ([`super::curvature`]).
+    pub curvature: [f32; 4],
 }
 
 /// Thickness where a mesh neither gives one nor has another side to cast to (metres).

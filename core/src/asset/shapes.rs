@@ -7,7 +7,7 @@ use glam::{Mat4, Vec3};
 
 use super::{Aabb, Material, Mesh, Model, Node, Primitive, Skin, Transform, Vertex};
 
-/// A vertex with its thickness (m) and mean curvature (1/m).
+/// A vertex with its thickness (m) and curvature (1/m, the same every way: `asset::curvature`).
 fn vertex(position: Vec3, normal: Vec3, thickness_m: f32, curvature: f32) -> Vertex {
     let t = if normal.x.abs() > 0.9 {
         Vec3::Z
@@ -23,7 +23,7 @@ fn vertex(position: Vec3, normal: Vec3, thickness_m: f32, curvature: f32) -> Ver
         joints: [0; 4],
         weights: [1.0, 0.0, 0.0, 0.0],
         thickness: thickness_m,
-        curvature,
+        curvature: [0.0, 0.0, 0.0, curvature],
     }
 }
 

@@ -268,7 +268,7 @@ fn load_primitive(
             joints: joints[i],
             weights: weights[i],
             thickness: thickness[i],
-            curvature: 0.0,
+            curvature: [0.0; 4],
         });
     }
     if n == 0 {

@@ -38,7 +38,7 @@ pub const VERTEX_ATTRIBUTES: [wgpu::VertexAttribute; 8] = wgpu::vertex_attr_arra
     4 => Uint16x4,
     5 => Float32x4,
     6 => Float32,
-    7 => Float32,
+    7 => Float32x4,
 ];
 
 pub fn vertex_layout() -> wgpu::VertexBufferLayout<'static> {
