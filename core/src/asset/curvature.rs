@@ -30,7 +30,7 @@ fn triangle(p: [Vec3; 3], n: [Vec3; 3]) -> Option<(Mat3, f32, f32)> {
     let (g11, g12, g22) = (e1.dot(e1), e1.dot(e2), e2.dot(e2));
     let det = g11 * g22 - g12 * g12;
     // A sliver (a corner under ~0.06°) carries no curvature f32 can place.
-    if !(det > 1e-6 * g11 * g22) {
+    if det.is_nan() || det <= 1e-6 * g11 * g22 {
         return None;
     }
     // G⁻¹ [e₁ e₂]ᵀ: the dual basis (v ↦ the coordinates of v's part in the plane).
