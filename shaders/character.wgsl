@@ -19,6 +19,7 @@ struct VertexIn {
     @location(4) joints: vec4<u32>,
     @location(5) weights: vec4<f32>,
     @location(6) thickness: f32,
+    @location(7) curvature: vec4<f32>,
 };
 
 struct VertexOut {
@@ -28,6 +29,7 @@ struct VertexOut {
     @location(2) tangent: vec4<f32>,
     @location(3) uv: vec2<f32>,
     @location(4) thickness: f32,
+    @location(5) curvature: f32,
 };
 
 @vertex
@@ -40,7 +42,21 @@ fn vs_main(v: VertexIn) -> VertexOut {
     out.normal = (skin * vec4<f32>(v.normal, 0.0)).xyz;
     out.tangent = vec4<f32>((skin * vec4<f32>(v.tangent.xyz, 0.0)).xyz, v.tangent.w);
     out.uv = v.uv;
-    out.thickness = v.thickness;
+    // Thickness and curvature in the mesh's units, scaled as the skin scales them (a fitted
+    // export).
+    let scale = max(length(out.normal), 1e-6);
+    out.thickness = v.thickness * scale;
+    // The surface's curvature along the light's direction across it, κ₂ + (a·t)²
+    // (asset::curvature: a turns with the skin, κ goes as 1/scale), where the light is overhead
+    // the mean curvature. Taken per vertex (a's sign is arbitrary; its square is not) and
+    // interpolated.
+    let n = out.normal / scale;
+    let to_light = frame.light_pos - world.xyz;
+    let along = to_light - n * dot(n, to_light);
+    let a = (skin * vec4<f32>(v.curvature.xyz, 0.0)).xyz / (scale * sqrt(scale));
+    let a2 = select(0.5 * dot(a, a), pow(dot(a, along), 2.0) / dot(along, along),
+                    dot(along, along) > 1e-6 * dot(to_light, to_light));
+    out.curvature = v.curvature.w / scale + a2;
     return out;
 }
 
@@ -52,11 +68,8 @@ fn surface_at(in: VertexOut, albedo: vec3<f32>, front: bool) -> Surface {
     normal = select(-normal, normal, front);
 #endif
     var s = make_surface(in.world_pos, normal, in.tangent, albedo, in.thickness);
-    // Curvature radius from screen-space derivatives: how far the surface moves per unit of
-    // normal change across a pixel (large on flat parts, small on fingers and ears).
-    let dn = length(fwidth(in.normal));
-    let dp = length(fwidth(in.world_pos));
-    s.curvature_radius = min(dp / max(dn, 1e-6), FLAT_RADIUS_M);
+    // The mesh's curvature along the light (vs_main); a concave or flat part is flat.
+    s.curvature_radius = 1.0 / max(in.curvature, 1.0 / FLAT_RADIUS_M);
     return s;
 }
 

@@ -68,7 +68,8 @@ struct Surface {
     pigmented: bool,
     // Material thickness through this point (m).
     thickness: f32,
-    // Radius of curvature of the surface here (m); FLAT_RADIUS_M where unknown.
+    // Radius of curvature of the surface here (m: the mesh's mean curvature); FLAT_RADIUS_M
+    // where unknown, flat or concave.
     curvature_radius: f32,
 };
 

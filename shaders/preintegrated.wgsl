@@ -26,6 +26,19 @@ fn slab_u(t_mm: f32) -> f32 {
     return log2(max(t_mm, SLAB_FIRST_MM) / SLAB_FIRST_MM) / LUT_SLAB_SPAN;
 }
 
+// The key light's visibility past the terminator (n·l < 0; `v` the surface's test). The
+// sphere rows hold light that entered the ball of radius ρ on its lit side, where the ray
+// toward the light leaves it, 2ρ|n·l| along l: that point is tested. A part thinner than its
+// ball (an ear) was lit on its far side, where the surface's own test looked.
+fn wrap_visibility(s: Surface, v: f32) -> f32 {
+    let back = -dot(s.n, s.l);
+    let ball = 2.0 * s.curvature_radius;
+    if (back <= 0.0 || s.thickness < ball) {
+        return v;
+    }
+    return light_visible_coord(shadow_coord(s.pos + s.l * (ball * back), s.l));
+}
+
 // The key light's visibility per channel. `v` is the shadow map's test at this point; near the
 // edge of a caster's shadow it becomes the edge-spread function of the material's kernel at the
 // point's signed distance from that edge (the penumbra map gives the nearest edge of a caster
@@ -35,7 +48,7 @@ fn penumbra(s: Surface, v: f32) -> vec3<f32> {
     let nl = dot(s.n, s.l);
     let c = s.shadow_coord;
     if (frame.penumbra_drawn == 0u || nl <= 0.0 || c.w < 0.5) {
-        return vec3<f32>(v);
+        return vec3<f32>(wrap_visibility(s, v));
     }
     let grid = frame.penumbra_grid;
     let cell = vec2<i32>(min(c.xy * grid, vec2<f32>(grid - 1.0)));

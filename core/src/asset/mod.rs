@@ -27,6 +27,7 @@
 mod accessor;
 mod animation;
 pub mod compressed;
+pub mod curvature;
 mod error;
 mod glb;
 mod images;
@@ -39,6 +40,7 @@ mod nodes;
 pub mod shapes;
 pub mod skin;
 pub mod tangents;
+pub mod thickness;
 mod uri;
 mod vertices;
 

@@ -5,7 +5,7 @@ use glam::{Mat4, Quat, Vec3};
 
 use super::Material;
 
-/// One vertex as uploaded to the GPU (76 bytes, `#[repr(C)]`).
+/// One vertex as uploaded to the GPU (92 bytes, `#[repr(C)]`).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct Vertex {
@@ -18,12 +18,16 @@ pub struct Vertex {
     pub joints: [u16; 4],
     /// Normalised to sum 1 (`[1,0,0,0]` for rigid meshes).
     pub weights: [f32; 4],
-    /// Local material thickness in metres (glTF attribute `_THICKNESS`), used as the OSS depth.
-    /// [`DEFAULT_THICKNESS_M`] when absent.
+    /// Local material thickness in metres (glTF attribute `_THICKNESS`): translucency's path,
+    /// the OSS depth. Where a mesh has none, ray cast at load ([`super::thickness`]).
     pub thickness: f32,
+    /// Curvature of the surface here (1/m; positive where convex) as `[a, κ₂]`: the normal
+    /// curvature along a unit tangent t is κ₂ + (a·t)²; computed at load from the mesh
+    /// ([`super::curvature`]).
+    pub curvature: [f32; 4],
 }
 
-/// Thickness used when a mesh has no `_THICKNESS` attribute (metres).
+/// Thickness where a mesh neither gives one nor has another side to cast to (metres).
 pub const DEFAULT_THICKNESS_M: f32 = 0.004;
 
 /// The most joints one skin may have: the palette is a 16 KiB uniform buffer (GLES-safe).

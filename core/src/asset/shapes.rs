@@ -7,7 +7,8 @@ use glam::{Mat4, Vec3};
 
 use super::{Aabb, Material, Mesh, Model, Node, Primitive, Skin, Transform, Vertex};
 
-fn vertex(position: Vec3, normal: Vec3, thickness_m: f32) -> Vertex {
+/// A vertex with its thickness (m) and curvature (1/m, the same every way: `asset::curvature`).
+fn vertex(position: Vec3, normal: Vec3, thickness_m: f32, curvature: f32) -> Vertex {
     let t = if normal.x.abs() > 0.9 {
         Vec3::Z
     } else {
@@ -22,6 +23,7 @@ fn vertex(position: Vec3, normal: Vec3, thickness_m: f32) -> Vertex {
         joints: [0; 4],
         weights: [1.0, 0.0, 0.0, 0.0],
         thickness: thickness_m,
+        curvature: [0.0, 0.0, 0.0, curvature],
     }
 }
 
@@ -88,7 +90,7 @@ pub fn plane_model(half_m: f32, thickness_m: f32) -> Model {
         for i in 0..=n {
             let (u, v) = (i as f32 / n as f32, j as f32 / n as f32);
             let p = Vec3::new((u * 2.0 - 1.0) * half_m, 0.0, (v * 2.0 - 1.0) * half_m);
-            vertices.push(vertex(p, Vec3::Y, thickness_m));
+            vertices.push(vertex(p, Vec3::Y, thickness_m, 0.0));
         }
     }
     skinned_model("flat medium", vertices, grid_indices(n, n), half_m)
@@ -107,7 +109,7 @@ pub fn sphere_model(r_m: f32, thickness_m: f32) -> Model {
                 theta.sin() * phi.sin(),
                 theta.cos(),
             );
-            vertices.push(vertex(n * r_m, n, thickness_m));
+            vertices.push(vertex(n * r_m, n, thickness_m, 1.0 / r_m));
         }
     }
     skinned_model("sphere", vertices, grid_indices(segments, rings), r_m)

@@ -39,6 +39,7 @@ pub(crate) fn load_mesh(
         has_rigid_primitive: false,
     };
     let mut primitives = Vec::new();
+    let mut given = Vec::new();
     for prim in mesh.primitives() {
         let label = format!("mesh {} primitive {}", mesh.index(), prim.index());
         if prim.mode() != Mode::Triangles {
@@ -54,7 +55,11 @@ pub(crate) fn load_mesh(
             None => info.has_rigid_primitive = true,
         }
         primitives.push(p);
+        given.push(prim.get(&Semantic::Extras("THICKNESS".into())).is_some());
     }
+    // Where the file gives no thickness, the mesh's own (ray cast at load); its curvature.
+    super::thickness::fill(&mut primitives, &given);
+    super::curvature::fill(&mut primitives);
     Ok((
         Mesh {
             name: mesh.name().map(str::to_owned),
@@ -263,6 +268,7 @@ fn load_primitive(
             joints: joints[i],
             weights: weights[i],
             thickness: thickness[i],
+            curvature: [0.0; 4],
         });
     }
     if n == 0 {

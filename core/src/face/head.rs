@@ -126,6 +126,15 @@ pub fn load_from(
     for v in &mut primitive.vertices {
         let p = Vec3::from_array(v.position) * METRES_PER_UNIT;
         v.position = p.to_array();
+        // Thickness (cast at load: the file gives none) and curvature in the file's units.
+        v.thickness *= METRES_PER_UNIT;
+        let a = METRES_PER_UNIT.sqrt();
+        v.curvature = [
+            v.curvature[0] / a,
+            v.curvature[1] / a,
+            v.curvature[2] / a,
+            v.curvature[3] / METRES_PER_UNIT,
+        ];
         v.uv[1] = 1.0 - v.uv[1];
         v.joints = [0; 4];
         v.weights = [1.0, 0.0, 0.0, 0.0];

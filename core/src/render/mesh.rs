@@ -29,8 +29,8 @@ impl GpuMesh {
     }
 }
 
-/// The vertex layout of [`Vertex`] (shader locations 0–6).
-pub const VERTEX_ATTRIBUTES: [wgpu::VertexAttribute; 7] = wgpu::vertex_attr_array![
+/// The vertex layout of [`Vertex`] (shader locations 0–7).
+pub const VERTEX_ATTRIBUTES: [wgpu::VertexAttribute; 8] = wgpu::vertex_attr_array![
     0 => Float32x3,
     1 => Float32x3,
     2 => Float32x4,
@@ -38,6 +38,7 @@ pub const VERTEX_ATTRIBUTES: [wgpu::VertexAttribute; 7] = wgpu::vertex_attr_arra
     4 => Uint16x4,
     5 => Float32x4,
     6 => Float32,
+    7 => Float32x4,
 ];
 
 pub fn vertex_layout() -> wgpu::VertexBufferLayout<'static> {
