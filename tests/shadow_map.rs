@@ -358,7 +358,7 @@ fn the_showroom_close_up_crops_the_shadow_map_to_what_it_sees() {
             camera_pos: pose.eye,
             light: Light {
                 position: light,
-                ..key_light(feet).clone()
+                ..key_light(feet)
             },
             exposure: EXPOSURE,
         });

@@ -244,7 +244,7 @@ fn slab_column(med: &Medium, budget: &Budget, seed: u64, threads: usize) -> [f64
 /// 1.90 mm⁻¹), toward σ'_t as ω' → 0. No scattering: σ_a; no absorption: 0.
 pub fn asymptotic_decay(sigma_a: f64, sigma_s_prime: f64) -> f64 {
     let t = sigma_a + sigma_s_prime;
-    if !(t > 0.0) || !t.is_finite() {
+    if t.is_nan() || t <= 0.0 || t.is_infinite() {
         return 0.0;
     }
     let w = (sigma_s_prime / t).clamp(0.0, 1.0);
