@@ -92,10 +92,9 @@ fn shade(s: Surface) -> vec3<f32> {
     // radius ρ, whose chord along the light here is 2ρ·back, so only a part thinner than its
     // curvature implies (an ear, a finger) adds the difference of the two slabs.
     let back = max(-dot(s.n, s.l), 0.0);
-    let path = s.thickness * model.mm_per_m * back;
     let entry = lut_row(back, LUT_CURVATURE_ROWS).g;
-    let slab = lut_row(slab_u(path), LUT_CURVATURE_ROWS + 1.0).rgb;
-    let ball = lut_row(slab_u(2.0 * rho_mm * back), LUT_CURVATURE_ROWS + 1.0).rgb;
+    let slab = lut_row(slab_u(sss_back_path_mm(s, back)), LUT_CURVATURE_ROWS + 1.0).rgb;
+    let ball = lut_row(slab_u(sss_chord_mm(s, back)), LUT_CURVATURE_ROWS + 1.0).rgb;
     let through = back * entry * max(slab - ball, vec3<f32>(0.0));
     let ambient = PI * frame.ambient * model.uniform_albedo;
     // The light before its shadow test (s.light carries the hard test), so the response

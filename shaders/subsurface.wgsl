@@ -154,14 +154,27 @@ fn sss_slab(t_mm: f32) -> vec3<f32> {
 
 #endif
 
+// The chord (mm) along the light through the sphere of the surface's curvature, from a point
+// lit from behind at `back` = −n·l.
+fn sss_chord_mm(s: Surface, back: f32) -> f32 {
+    return 2.0 * s.curvature_radius * model.mm_per_m * back;
+}
+
+// How far (mm) light from behind travels through the material to this point: the ray toward
+// the light leaves through the curved side (the chord) or through the far face, the thickness
+// t / |n·l| away (a slab), whichever it meets first. A sphere (t = 2ρ): the chord; a flat
+// part: the slab's path, long at grazing light (so a thick jaw turned from the light does not
+// glow as if it were a thin chord).
+fn sss_back_path_mm(s: Surface, back: f32) -> f32 {
+    return min(sss_chord_mm(s, back), s.thickness * model.mm_per_m / max(back, 1e-3));
+}
+
 // Light through the material from behind (n·l < 0), spread locally (models whose
 // composition sets TRANSLUCENCY; the others have no such code).
 fn sss_translucency(s: Surface) -> vec3<f32> {
 #ifdef TRANSLUCENCY
     let back = max(-dot(s.n, s.l), 0.0);
-    // The path through the material along the light: the thickness (through the surface
-    // along its normal) times |n·l|, exact for a sphere's chord, the slab's at normal light.
-    let path = s.thickness * model.mm_per_m * back;
+    let path = sss_back_path_mm(s, back);
     // Entry through the far face: its Fresnel transmission relative to normal incidence.
     let entry = fresnel_transmittance(model.eta, back) * model.inv_entry;
     return irradiance(s) * back * entry * sss_slab(path);

@@ -58,7 +58,7 @@ pub enum BenchKind {
     Shading(crate::cmd::bench_shading::ShadingArgs),
     /// GPU and CPU time saved by effect scheduling (tier by coverage and light), on/off ratios.
     Effects(crate::cmd::bench_effects::EffectsArgs),
-    /// Every model on the scanned head against the cached Mitsuba 3 references.
+    /// Every model on the scanned head against its cached Monte Carlo truth (`dermis reference --scene head`).
     Face(crate::cmd::bench_face::FaceArgs),
 }
 
