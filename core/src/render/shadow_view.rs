@@ -9,17 +9,14 @@
 
 use glam::{Mat4, Vec2, Vec3, Vec4, Vec4Swizzles};
 
+pub use crate::shading::edge_spread::SHADOW_RAMP_TEXELS;
+
 /// A light farther than this many sphere radii gets an orthographic frustum.
 const ORTHOGRAPHIC_BEYOND: f32 = 20.0;
 /// Normal offset and depth bias, in texels of the map at the casters. The normal offset: half the filter's ramp, as far as its outer taps reach (a quarter
 /// of it: the grazing side of a ball shadows itself, 9 % at n·l 0.02–0.05).
 const NORMAL_OFFSET_TEXELS: f32 = 0.5 * SHADOW_RAMP_TEXELS;
 const DEPTH_BIAS_TEXELS: f32 = 1.0;
-/// The shadow test's ramp across a straight edge, in map texels: `light_visible_coord`
-/// (`shaders/common.wgsl`) averages bilinear comparisons half this less a half texel either
-/// side, so its visibility rises linearly over this width; `penumbra()` reads the edge's
-/// place from it.
-pub const SHADOW_RAMP_TEXELS: f32 = 2.0;
 /// A crop magnifies the map at most this much (the penumbra map's reach in grid texels and
 /// the depth's precision per texel stay within what they were made for).
 const MAX_ZOOM: f32 = 8.0;

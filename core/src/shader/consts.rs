@@ -75,8 +75,8 @@ pub fn table() -> [(&'static str, Const, &'static str); 14] {
         ),
         (
             "SHADOW_RAMP_TEXELS",
-            Const::F32(crate::render::SHADOW_RAMP_TEXELS),
-            "the shadow test's linear ramp across an edge, map texels (render::SHADOW_RAMP_TEXELS)",
+            Const::F32(edge_spread::SHADOW_RAMP_TEXELS),
+            "the shadow test's linear ramp across an edge, map texels (shading::edge_spread::SHADOW_RAMP_TEXELS)",
         ),
         (
             "LIGHT_D_MIN_M",

@@ -11,6 +11,12 @@ use super::bake::Bake;
 /// function turns; coarse in the tails, stored as log2 so exponential tails interpolate).
 pub const SPAN_MM: f64 = 128.0;
 
+/// The shadow test's ramp across a straight edge, in shadow-map texels: `light_visible_coord`
+/// (`shaders/common.wgsl`) averages bilinear comparisons half this less a half texel either
+/// side, so its visibility rises linearly over this width; `penumbra()` reads the edge's place
+/// from it (and the renderer's shadow view sets its normal offset from it).
+pub const SHADOW_RAMP_TEXELS: f32 = 2.0;
+
 /// Area of the part of a disk of radius `r` (centred at 0) with x < d.
 fn disk_below(r: f64, d: f64) -> f64 {
     if d >= r {
