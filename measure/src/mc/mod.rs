@@ -79,6 +79,8 @@ pub mod walk;
 pub mod chandrasekhar;
 pub(crate) mod dipole_check;
 #[cfg(test)]
+mod golden_tests;
+#[cfg(test)]
 mod scene_tests;
 #[cfg(test)]
 mod tests;
