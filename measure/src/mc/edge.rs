@@ -16,7 +16,7 @@
 //! strip).
 
 use super::estimate::{run_batches, Acc};
-use super::walk::{ExitBinning, Walker};
+use super::flat::{ExitBinning, FlatWalker};
 use super::{Detectors, Estimate, Geometry, Medium, Profile, Source};
 
 /// Diffuse reflectance of the semi-infinite medium for a collimated beam with incidence
@@ -84,7 +84,7 @@ pub fn shadow_edge_with(
             "mc: strip edges must be finite and ascending"
         );
     }
-    let mut walker = Walker::new(
+    let mut walker = FlatWalker::new(
         m,
         Geometry::SemiInfinite,
         Source::Collimated { mu },
@@ -147,7 +147,7 @@ pub fn slab_diffuse_transmittance(
     seed: u64,
     threads: usize,
 ) -> Estimate {
-    let walker = Walker::new(
+    let walker = FlatWalker::new(
         m,
         Geometry::Slab { d },
         Source::Normal,

@@ -105,6 +105,14 @@ impl Tally {
             ..Default::default()
         }
     }
+    /// Adds a photon's events and the weight it lost to absorption (when any).
+    #[inline]
+    pub fn finish_photon(&mut self, events: u64, absorbed: f64) {
+        self.events += events;
+        if absorbed != 0.0 {
+            self.absorbed.add(absorbed);
+        }
+    }
     pub fn merge(&mut self, o: &Tally) {
         self.n += o.n;
         self.events += o.events;

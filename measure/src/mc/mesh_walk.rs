@@ -1,5 +1,5 @@
-//! The photon walk inside a closed triangle mesh ([`ClosedMesh`]), lit by an isotropic point
-//! light outside it: the probes' walk (`walk.rs`, `sphere.rs`) on arbitrary geometry.
+//! The closed triangle mesh ([`ClosedMesh`]) lit by an isotropic point light outside it: the
+//! walk of `walk.rs` with the mesh as its geometry (`Inside`) and the caller's exit scorer.
 //!
 //! **Source.** A point light of unit radiant intensity at `light`. Only directions that can
 //! reach the mesh matter: photons are sampled uniformly over the cone from the light that just
@@ -18,10 +18,8 @@
 //! reflected with probability F there and re-enters otherwise — physical interreflection,
 //! which counts again at its next exit. Light that leaves for good is `escaped`.
 //!
-//! **Inside.** Exponential free paths in σ_t, implicit absorption, Russian roulette relative
-//! to the entry weight (`walk::ROULETTE_THRESHOLD`, `walk::ROULETTE_SURVIVAL`), Henyey–Greenstein
-//! scattering (`phase.rs`), the event cap. A free flight shorter than the mesh's safe distance
-//! needs no ray query. Where the mesh overlaps itself (a scan's eyelids and lips cross other
+//! **Inside.** The walk's (`walk.rs`), Russian roulette relative to the entry weight. A free
+//! flight shorter than the mesh's safe distance needs no ray query. Where the mesh overlaps itself (a scan's eyelids and lips cross other
 //! sheets) the medium is the region of positive winding number: the walk counts the layers it
 //! is in and only the outermost face is a boundary. A photon found outside the mesh while
 //! inside (a crack between triangles at f32/f64 precision, or a face seen from behind from
@@ -39,9 +37,8 @@ use glam::DVec3;
 use super::estimate::Acc;
 use super::fresnel::fresnel;
 use super::mesh::{ClosedMesh, DistanceField, Hit};
-use super::phase::{rotate, sample_hg_cos};
 use super::rng::Rng;
-use super::walk::{ROULETTE_SURVIVAL, ROULETTE_THRESHOLD};
+use super::walk::{Flight, Outside, Photon, Scoring, Volume, Walk, ROULETTE_THRESHOLD};
 use super::Medium;
 use std::f64::consts::PI;
 
@@ -120,10 +117,7 @@ pub struct Exit {
 /// One channel's walk in one mesh under one point light.
 pub struct MeshWalker<'a> {
     pub mesh: &'a ClosedMesh,
-    sigma_t: f64,
-    albedo: f64,
-    g: f64,
-    eta: f64,
+    walk: Walk,
     light: DVec3,
     /// Cosine of the source cone's half-angle (−1: the whole sphere).
     cos_cone: f64,
@@ -148,7 +142,7 @@ impl<'a> MeshWalker<'a> {
     /// A walker for medium `m` (lengths in the mesh's units) under a point light at `light`
     /// (outside the mesh).
     pub fn new(mesh: &'a ClosedMesh, m: &Medium, light: DVec3) -> Self {
-        let (sigma_s, sigma_t) = m.checked_sigmas();
+        let walk = Walk::new(m, super::MAX_EVENTS);
         let to_centre = mesh.centre - light;
         let dist = to_centre.length();
         let cos_cone = if dist > mesh.radius * (1.0 + 1e-9) {
@@ -160,10 +154,7 @@ impl<'a> MeshWalker<'a> {
         let (u, v) = w.any_orthonormal_pair();
         Self {
             mesh,
-            sigma_t,
-            albedo: sigma_s / sigma_t,
-            g: m.g,
-            eta: m.eta,
+            walk,
             light,
             cos_cone,
             axis: [u, v, w],
@@ -196,7 +187,7 @@ impl<'a> MeshWalker<'a> {
             t.lost.add(1.0);
             return;
         }
-        let (f, cos_t) = fresnel(cos_i, self.eta);
+        let (f, cos_t) = fresnel(cos_i, self.walk.eta);
         if f > 0.0 {
             t.specular.add(f);
         }
@@ -215,122 +206,175 @@ impl<'a> MeshWalker<'a> {
                 w0 /= r.survival;
             }
         }
-        let dir = refract_in(d, n, cos_i, cos_t, self.eta);
-        self.follow(rng, t, x, dir, w0, hit.tri, score);
+        let dir = refract_in(d, n, cos_i, cos_t, self.walk.eta);
+        let walk = Walk {
+            max_events: self.max_events,
+            ..self.walk
+        };
+        let start = Layers {
+            on: Some(hit.tri),
+            depth: 1,
+        };
+        let mut exits = MeshScore { t, score };
+        let threshold = ROULETTE_THRESHOLD * w0;
+        walk.follow(
+            &Inside(self.mesh),
+            start,
+            &mut exits,
+            rng,
+            Photon::new(x, dir, w0),
+            threshold,
+        );
+    }
+}
+
+/// The closed mesh as a [`Volume`] of the walk (module docs: the safe distance, the layers of
+/// overlapping sheets, re-entry).
+pub(crate) struct Inside<'a>(pub &'a ClosedMesh);
+
+/// Where a photon is with respect to the mesh's surfaces: the triangle it lies on (none after
+/// a free flight) and the layers of the mesh around it (its winding number: 1 inside a simple
+/// mesh).
+pub(crate) struct Layers {
+    on: Option<u32>,
+    depth: u32,
+}
+
+/// The triangle a flight met and its outward normal.
+pub(crate) struct Face {
+    hit: Hit,
+    n: DVec3,
+}
+
+impl Volume for Inside<'_> {
+    type State = Layers;
+    type Hit = Face;
+
+    #[inline]
+    fn flight(&self, st: &mut Layers, p: &mut Photon, s: f64) -> Flight<Face> {
+        let mesh = self.0;
+        let safe = if st.on.is_some() {
+            0.0
+        } else {
+            match mesh.safe_distance(p.pos) {
+                Some(d) => d,
+                None => return Flight::Lost,
+            }
+        };
+        if s >= safe {
+            if let Some(hit) = mesh.first_hit(p.pos, p.dir, s, st.on) {
+                p.pos += p.dir * hit.t;
+                let n = mesh.normal(hit.tri);
+                let cos_i = p.dir.dot(n);
+                // Overlapping sheets (a scan's self-intersections: eyelids, lips): the medium
+                // is where the winding number is positive, so a face crossed inward adds a
+                // layer and one crossed outward with layers to spare removes it; only the last
+                // layer's face is the boundary.
+                if cos_i <= 0.0 || st.depth > 1 {
+                    st.depth = if cos_i <= 0.0 {
+                        st.depth + 1
+                    } else {
+                        st.depth - 1
+                    };
+                    st.on = Some(hit.tri);
+                    return Flight::Through;
+                }
+                return Flight::Boundary {
+                    hit: Face { hit, n },
+                    cos_i,
+                };
+            }
+        }
+        st.on = None;
+        Flight::Free
     }
 
-    /// Follows a photon that has just entered at `x` through triangle `tri`.
-    #[allow(clippy::too_many_arguments)]
-    fn follow(
+    #[inline]
+    fn reflect(&self, st: &mut Layers, p: &mut Photon, f: &Face, cos_i: f64) {
+        p.dir = (p.dir - f.n * (2.0 * cos_i)).normalize();
+        st.on = Some(f.hit.tri);
+    }
+
+    /// Outside: follows the refracted ray until it escapes or meets the mesh again, where it
+    /// is reflected with probability F or re-enters.
+    #[inline]
+    fn leave(
         &self,
+        st: &mut Layers,
+        p: &mut Photon,
+        f: &Face,
+        cos_i: f64,
+        cos_out: f64,
+        eta: f64,
         rng: &mut Rng,
-        t: &mut MeshTally,
-        mut x: DVec3,
-        mut u: DVec3,
-        mut w: f64,
-        tri: u32,
-        score: &mut impl FnMut(&Exit),
-    ) {
-        let threshold = ROULETTE_THRESHOLD * w;
-        let inv_eta = 1.0 / self.eta;
-        let mut on: Option<u32> = Some(tri);
-        // Layers of the mesh around the photon (its winding number): 1 inside a simple mesh.
-        let mut depth: u32 = 1;
-        let mut absorbed = 0.0;
-        let mut events: u64 = 0;
-        'walk: loop {
-            events += 1;
-            if events > self.max_events {
-                t.capped.add(w);
-                break;
-            }
-            let s = -rng.uniform_pos().ln() / self.sigma_t;
-            let safe = if on.is_some() {
-                0.0
-            } else {
-                match self.mesh.safe_distance(x) {
-                    Some(d) => d,
-                    None => {
-                        t.lost.add(w);
-                        break;
-                    }
-                }
+    ) -> Outside {
+        let mesh = self.0;
+        let n = f.n;
+        let mut d = ((p.dir - n * cos_i) * eta + n * cos_out).normalize();
+        let mut from = f.hit.tri;
+        loop {
+            let Some(h) = mesh.first_hit(p.pos, d, f64::INFINITY, Some(from)) else {
+                return Outside::Escaped;
             };
-            if s >= safe {
-                if let Some(hit) = self.mesh.first_hit(x, u, s, on) {
-                    x += u * hit.t;
-                    let n = self.mesh.normal(hit.tri);
-                    let cos_i = u.dot(n);
-                    // Overlapping sheets (a scan's self-intersections: eyelids, lips): the
-                    // medium is where the winding number is positive, so a face crossed inward
-                    // adds a layer and one crossed outward with layers to spare removes it; only
-                    // the last layer's face is the boundary. Free paths are memoryless: the
-                    // flight goes on from the crossing with a fresh length.
-                    if cos_i <= 0.0 || depth > 1 {
-                        depth = if cos_i <= 0.0 { depth + 1 } else { depth - 1 };
-                        on = Some(hit.tri);
-                        continue;
-                    }
-                    let (fr, cos_out) = fresnel(cos_i, inv_eta);
-                    if fr > 0.0 && (fr >= 1.0 || rng.uniform() < fr) {
-                        u = (u - n * (2.0 * cos_i)).normalize();
-                        on = Some(hit.tri);
-                        continue;
-                    }
-                    t.exits.add(w);
-                    score(&Exit {
-                        point: x,
-                        hit,
-                        weight: w,
-                    });
-                    // Outside: follow the refracted ray until it escapes or re-enters.
-                    let mut d = (u - n * cos_i) * self.eta + n * cos_out;
-                    d = d.normalize();
-                    let mut from = hit.tri;
-                    loop {
-                        let Some(h) = self.mesh.first_hit(x, d, f64::INFINITY, Some(from)) else {
-                            t.escaped.add(w);
-                            break 'walk;
-                        };
-                        x += d * h.t;
-                        let n = self.mesh.normal(h.tri);
-                        let cos_i = -d.dot(n);
-                        if cos_i <= 0.0 {
-                            t.lost.add(w);
-                            break 'walk;
-                        }
-                        let (f, cos_t) = fresnel(cos_i, self.eta);
-                        from = h.tri;
-                        if f > 0.0 && (f >= 1.0 || rng.uniform() < f) {
-                            d = (d + n * (2.0 * cos_i)).normalize();
-                            continue;
-                        }
-                        t.reentered.add(w);
-                        u = refract_in(d, n, cos_i, cos_t, self.eta);
-                        on = Some(h.tri);
-                        depth = 1;
-                        continue 'walk;
-                    }
-                }
+            p.pos += d * h.t;
+            let n = mesh.normal(h.tri);
+            let cos_i = -d.dot(n);
+            if cos_i <= 0.0 {
+                return Outside::Lost;
             }
-            x += u * s;
-            on = None;
-            absorbed += w * (1.0 - self.albedo);
-            w *= self.albedo;
-            if w < threshold {
-                if w == 0.0 || rng.uniform() >= ROULETTE_SURVIVAL {
-                    absorbed += w;
-                    break;
-                }
-                w /= ROULETTE_SURVIVAL;
+            let (f, cos_t) = fresnel(cos_i, eta);
+            from = h.tri;
+            if f > 0.0 && (f >= 1.0 || rng.uniform() < f) {
+                d = (d + n * (2.0 * cos_i)).normalize();
+                continue;
             }
-            let ct = sample_hg_cos(self.g, rng.uniform());
-            let phi = 2.0 * PI * rng.uniform();
-            u = DVec3::from_array(rotate(u.to_array(), ct, phi));
+            p.dir = refract_in(d, n, cos_i, cos_t, eta);
+            *st = Layers {
+                on: Some(h.tri),
+                depth: 1,
+            };
+            return Outside::Reentered;
         }
-        t.events += events.min(self.max_events);
+    }
+}
+
+/// The mesh walk's books of one photon and the caller's exit scorer.
+struct MeshScore<'s, F> {
+    t: &'s mut MeshTally,
+    score: &'s mut F,
+}
+
+impl<F: FnMut(&Exit)> Scoring<Inside<'_>> for MeshScore<'_, F> {
+    #[inline]
+    fn exit(&mut self, _: &Inside<'_>, p: &Photon, f: &Face, _: f64) {
+        self.t.exits.add(p.weight);
+        (self.score)(&Exit {
+            point: p.pos,
+            hit: f.hit,
+            weight: p.weight,
+        });
+    }
+    #[inline]
+    fn capped(&mut self, w: f64) {
+        self.t.capped.add(w);
+    }
+    #[inline]
+    fn lost(&mut self, w: f64) {
+        self.t.lost.add(w);
+    }
+    #[inline]
+    fn reentered(&mut self, w: f64) {
+        self.t.reentered.add(w);
+    }
+    #[inline]
+    fn escaped(&mut self, w: f64) {
+        self.t.escaped.add(w);
+    }
+    #[inline]
+    fn done(&mut self, events: u64, absorbed: f64) {
+        self.t.events += events;
         if absorbed != 0.0 {
-            t.absorbed.add(absorbed);
+            self.t.absorbed.add(absorbed);
         }
     }
 }

@@ -59,6 +59,21 @@
 //! - **Backlit slab** ([`slab_diffuse_transmittance`]): a slab's transmittance less its
 //!   unscattered part.
 //!
+//! # One walk, many scenes
+//! The photon walk itself (free flights, implicit absorption, roulette, HG scattering, the event
+//! cap, the Fresnel boundary) is written once, `walk::Walk::follow`, generic over the scene's
+//! geometry (`walk::Volume`: distance to the boundary along a flight and the incidence cosine
+//! there, the mirror direction, what happens after an exit, the albedo at a point) and its
+//! tallies (`walk::Scoring`). The scenes: `flat.rs` (the semi-infinite medium and the slab,
+//! with [`Source`]'s sources and the radial, cone and shadow-edge detectors), `sphere.rs` (the
+//! sphere under a beam, polar-angle bands), `mesh_walk.rs` (a closed triangle mesh, `mesh.rs`,
+//! under a point light: BVH queries skipped within the safe distance, overlapping sheets'
+//! layers, re-entry, the entry roulette; exits handed to the caller — the face truth projects
+//! them into its camera) and `pigment.rs` (the flat medium under an albedo map, its albedo
+//! varying over the surface). The white walk of `albedo.rs` is another algorithm (no
+//! absorption, depth only, a length roulette) and has its own loop. `golden_tests.rs` pins
+//! every entry point's results bit for bit.
+//!
 //! # Determinism
 //! Photons run in fixed batches of [`estimate::BATCH_SIZE`]; batch b draws from its own
 //! xoshiro256++ stream seeded from (seed, b). Threads take batches dynamically, but batch
@@ -67,6 +82,7 @@
 pub mod albedo;
 pub mod edge;
 pub mod estimate;
+pub(crate) mod flat;
 pub mod fresnel;
 pub mod mesh;
 pub mod mesh_walk;
@@ -289,7 +305,7 @@ pub fn simulate(
         );
     }
     let nbins = det.edges.len().saturating_sub(1);
-    let walker = walk::Walker::new(m, geom, source, &det.edges, det.cone_mu, det.max_events);
+    let walker = flat::FlatWalker::new(m, geom, source, &det.edges, det.cone_mu, det.max_events);
     let t = estimate::run_batches(photons, seed, threads, nbins, |rng, t| {
         walker.photon(rng, t)
     });

@@ -1,8 +1,8 @@
 //! A flat semi-infinite medium whose albedo varies over the surface: an albedo map A(x) of
 //! texels (stripes in x, constant in y) on a medium of multi-scatter albedo A₀, under three
-//! ways of making the map a subsurface medium ([`Texturing`]). The walk is the plane walker's
-//! (σ_t = σ'_t, g = 0, exponential free paths, implicit absorption, Russian roulette, smooth
-//! Fresnel boundary with all-or-none internal reflection).
+//! ways of making the map a subsurface medium ([`Texturing`]). The walk is `walk.rs`'s in the
+//! flat volume of `flat.rs` (σ_t = σ'_t, g = 0, Russian roulette relative to the entry
+//! weight), its single-scattering albedo read from the map under [`Texturing::PerTexel`].
 //!
 //! **How the pigment is modelled** ([`Texturing::PrePost`]): an infinitely thin, purely
 //! absorbing layer lying on the boundary, over a homogeneous medium of the material's albedo
@@ -23,15 +23,18 @@
 //! Sources: [`Light::Uniform`] (diffuse, cosine-weighted light of unit irradiance over the
 //! whole plane; entry points uniform over a window wide enough that what lies beyond it does
 //! not reach the bins, or over one period of a periodic map) and [`Light::Point`] (the
-//! isotropic unit-power point light of [`super::walk`], at height h above x = y = 0). Exits
+//! isotropic unit-power point light of [`super::Source::PointLight`], at height h above x = y = 0). Exits
 //! are binned in strips of x (all y for uniform light; |y| < band/2 for the point light).
 
-use super::estimate::{run_batches, Acc};
+use glam::DVec3;
+use std::f64::consts::PI;
+
+use super::estimate::{run_batches, Acc, Tally};
+use super::flat::{Face, Flat};
 use super::fresnel::fresnel;
 use super::rng::Rng;
-use super::walk::{ROULETTE_SURVIVAL, ROULETTE_THRESHOLD};
+use super::walk::{Flight, Photon, Scoring, Volume, Walk, ROULETTE_THRESHOLD};
 use super::{Estimate, Profile, MAX_EVENTS};
-use std::f64::consts::PI;
 
 /// How the albedo map enters the medium (see the module docs).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -133,7 +136,7 @@ impl Textured {
         }
     }
 
-    fn photon(&self, light: Light, bins: &Bins, rng: &mut Rng, t: &mut super::estimate::Tally) {
+    fn photon(&self, light: Light, bins: &Bins, rng: &mut Rng, t: &mut Tally) {
         let (mu, x, y, w0) = match light {
             Light::Uniform { x_min, x_max } => {
                 let (a, b) = self.map.period.map_or((x_min, x_max), |p| (0.0, p));
@@ -154,63 +157,101 @@ impl Textured {
         let phi = 2.0 * PI * rng.uniform();
         let (f, cos_t) = fresnel(mu, self.eta);
         let (entry, _, _) = self.stripe_weights(x);
-        let mut w = w0 * (1.0 - f) * entry;
+        let w = w0 * (1.0 - f) * entry;
         if w <= 0.0 {
             return;
         }
         let sin_t = (1.0 - cos_t * cos_t).max(0.0).sqrt();
-        let [mut px, mut py, mut pz] = [x, y, 0.0];
-        let [mut ux, mut uy, mut uz] = [sin_t * phi.cos(), sin_t * phi.sin(), cos_t];
-        let threshold = ROULETTE_THRESHOLD * w;
-        let inv_eta = 1.0 / self.eta;
-        let mut events = 0u64;
-        loop {
-            events += 1;
-            if events > MAX_EVENTS {
-                t.capped.add(w);
-                break;
-            }
-            let s = -rng.uniform_pos().ln() / self.sigma_t;
-            if uz < 0.0 && s >= -pz / uz {
-                let d = -pz / uz;
-                px += ux * d;
-                py += uy * d;
-                pz = 0.0;
-                let (r, _) = fresnel(-uz, inv_eta);
-                if r > 0.0 && (r >= 1.0 || rng.uniform() < r) {
-                    uz = -uz;
-                    continue;
-                }
-                let (_, exit, _) = self.stripe_weights(px);
-                let out = w * exit;
-                t.refl.add(out);
-                let in_band = match light {
-                    Light::Uniform { .. } => true,
-                    Light::Point { .. } => py.abs() < 0.5 * bins.band,
-                };
-                let bx = self.map.period.map_or(px, |p| px.rem_euclid(p));
-                let e = &bins.edges;
-                if in_band && bx >= e[0] && bx < e[e.len() - 1] {
-                    t.refl_bins[e.partition_point(|&v| v <= bx) - 1].add(out);
-                }
-                break;
-            }
-            px += ux * s;
-            py += uy * s;
-            pz += uz * s;
-            let (_, _, albedo) = self.stripe_weights(px);
-            w *= albedo;
-            if w < threshold {
-                if w == 0.0 || rng.uniform() >= ROULETTE_SURVIVAL {
-                    break;
-                }
-                w /= ROULETTE_SURVIVAL;
-            }
-            let ct = 2.0 * rng.uniform() - 1.0;
-            let az = 2.0 * PI * rng.uniform();
-            [ux, uy, uz] = super::phase::rotate([ux, uy, uz], ct, az);
+        let p = Photon::new(
+            DVec3::new(x, y, 0.0),
+            DVec3::new(sin_t * phi.cos(), sin_t * phi.sin(), cos_t),
+            w,
+        );
+        let walk = Walk {
+            sigma_t: self.sigma_t,
+            albedo: self.base_single,
+            g: 0.0,
+            eta: self.eta,
+            max_events: MAX_EVENTS,
+        };
+        let volume = Pigmented {
+            flat: Flat { d: f64::INFINITY },
+            medium: self,
+        };
+        let mut score = StripScore {
+            medium: self,
+            light,
+            bins,
+            t,
+        };
+        walk.follow(&volume, (), &mut score, rng, p, ROULETTE_THRESHOLD * w);
+    }
+}
+
+/// The semi-infinite medium under the albedo map: the flat volume, whose single-scattering
+/// albedo follows the map under [`Texturing::PerTexel`].
+struct Pigmented<'a> {
+    flat: Flat,
+    medium: &'a Textured,
+}
+
+impl Volume for Pigmented<'_> {
+    type State = ();
+    type Hit = Face;
+
+    #[inline]
+    fn flight(&self, st: &mut (), p: &mut Photon, s: f64) -> Flight<Face> {
+        self.flat.flight(st, p, s)
+    }
+
+    #[inline]
+    fn reflect(&self, st: &mut (), p: &mut Photon, hit: &Face, cos_i: f64) {
+        self.flat.reflect(st, p, hit, cos_i)
+    }
+
+    #[inline]
+    fn albedo(&self, pos: DVec3, base: f64) -> f64 {
+        match self.medium.texturing {
+            Texturing::PerTexel => self.medium.single[self.medium.map.index(pos.x)],
+            Texturing::PrePost | Texturing::PostOnly => base,
         }
-        t.events += events.min(MAX_EVENTS);
+    }
+}
+
+/// The strips' tallies of one photon: its exit weighted by the map where it leaves.
+struct StripScore<'s> {
+    medium: &'s Textured,
+    light: Light,
+    bins: &'s Bins,
+    t: &'s mut Tally,
+}
+
+impl Scoring<Pigmented<'_>> for StripScore<'_> {
+    #[inline]
+    fn exit(&mut self, _: &Pigmented<'_>, p: &Photon, _: &Face, _: f64) {
+        let (px, py) = (p.pos.x, p.pos.y);
+        let (_, exit, _) = self.medium.stripe_weights(px);
+        let out = p.weight * exit;
+        self.t.refl.add(out);
+        let in_band = match self.light {
+            Light::Uniform { .. } => true,
+            Light::Point { .. } => py.abs() < 0.5 * self.bins.band,
+        };
+        let bx = self.medium.map.period.map_or(px, |p| px.rem_euclid(p));
+        let e = &self.bins.edges;
+        if in_band && bx >= e[0] && bx < e[e.len() - 1] {
+            self.t.refl_bins[e.partition_point(|&v| v <= bx) - 1].add(out);
+        }
+    }
+
+    #[inline]
+    fn capped(&mut self, w: f64) {
+        self.t.capped.add(w);
+    }
+
+    #[inline]
+    fn done(&mut self, events: u64, _absorbed: f64) {
+        self.t.events += events;
     }
 }
 

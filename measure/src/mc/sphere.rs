@@ -2,8 +2,8 @@
 //!
 //! The sphere (radius R mm, centred at the origin) has the same smooth Fresnel boundary as
 //! the plane-parallel media (unpolarised Fresnel, TIR, all-or-none reflection) and the same
-//! walk (exponential free paths, implicit absorption, Russian roulette, HG scattering, event
-//! cap). The beam travels along −z with unit irradiance per unit area normal to it: light
+//! walk (`walk.rs`, with the ball as its geometry, `Ball`; Russian roulette relative to the
+//! entry weight). The beam travels along −z with unit irradiance per unit area normal to it: light
 //! arrives uniformly over the projected disk πR², at the point of the upper hemisphere above
 //! each disk position, and refracts at the local normal (Fresnel reflection there is the
 //! specular part, excluded from the exitance).
@@ -25,13 +25,14 @@
 //! Deterministic like [`super::simulate`]: fixed batches, one stream per batch, batch tallies
 //! summed in batch order.
 
+use glam::DVec3;
+use std::f64::consts::PI;
+
 use super::estimate::{run_batches, Tally};
 use super::fresnel::fresnel;
-use super::phase::{rotate, sample_hg_cos};
 use super::rng::Rng;
-use super::walk::{ROULETTE_SURVIVAL, ROULETTE_THRESHOLD};
+use super::walk::{Flight, Photon, Scoring, Volume, Walk, ROULETTE_THRESHOLD};
 use super::{Estimate, Medium, Profile};
-use std::f64::consts::PI;
 
 /// What [`sphere`] measures.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -54,16 +55,14 @@ pub struct SphereResults {
     pub bands: Profile,
 }
 
-struct SphereWalker<'a> {
-    radius: f64,
-    sigma_t: f64,
-    albedo: f64,
-    g: f64,
-    eta: f64,
-    /// Band edges in degrees of θ, ascending.
-    edges_deg: &'a [f64],
-    max_events: u64,
+/// The ball of radius `radius` centred at the origin, as a [`Volume`] of the walk.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Ball {
+    pub radius: f64,
 }
+
+/// The outward normal where a flight met the sphere.
+pub(crate) struct Normal(pub [f64; 3]);
 
 #[inline]
 fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
@@ -74,6 +73,52 @@ fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
 fn normalise(a: [f64; 3]) -> [f64; 3] {
     let k = 1.0 / dot(a, a).sqrt();
     [a[0] * k, a[1] * k, a[2] * k]
+}
+
+impl Volume for Ball {
+    type State = ();
+    type Hit = Normal;
+
+    #[inline]
+    fn flight(&self, _: &mut (), ph: &mut Photon, s: f64) -> Flight<Normal> {
+        let r = self.radius;
+        let (p, u) = (ph.pos.to_array(), ph.dir.to_array());
+        // Distance to the sphere along u, in the cancellation-free form.
+        let b = dot(p, u);
+        let c = r * r - dot(p, p); // ≥ 0 inside (up to rounding)
+        let disc = (b * b + c).max(0.0).sqrt();
+        let db = if b > 0.0 { c / (b + disc) } else { disc - b };
+        if s >= db {
+            let db = db.max(0.0);
+            let q = [p[0] + u[0] * db, p[1] + u[1] * db, p[2] + u[2] * db];
+            let n = normalise(q);
+            ph.pos = DVec3::new(n[0] * r, n[1] * r, n[2] * r);
+            Flight::Boundary {
+                hit: Normal(n),
+                cos_i: dot(u, n).max(0.0),
+            }
+        } else {
+            Flight::Free
+        }
+    }
+
+    #[inline]
+    fn reflect(&self, _: &mut (), ph: &mut Photon, n: &Normal, cos_i: f64) {
+        let (u, n, k) = (ph.dir.to_array(), n.0, 2.0 * cos_i);
+        ph.dir = DVec3::from_array(normalise([
+            u[0] - k * n[0],
+            u[1] - k * n[1],
+            u[2] - k * n[2],
+        ]));
+    }
+}
+
+/// The sphere scene: its walk, the beam, and the bands exits are binned in.
+struct SphereWalker<'a> {
+    walk: Walk,
+    ball: Ball,
+    /// Band edges in degrees of θ, ascending.
+    edges_deg: &'a [f64],
 }
 
 impl SphereWalker<'_> {
@@ -88,7 +133,7 @@ impl SphereWalker<'_> {
     }
 
     fn photon(&self, rng: &mut Rng, t: &mut Tally) {
-        let r = self.radius;
+        let r = self.ball.radius;
         // Entry cosine from the mixture ½·(density 2μ: uniform over the projected disk) +
         // ½·(density 1: uniform over the hemisphere), weighted by 2μ/(μ + ½) (module docs).
         let pick = rng.uniform();
@@ -103,9 +148,8 @@ impl SphereWalker<'_> {
         let phi = 2.0 * PI * rng.uniform();
         let (s, c) = phi.sin_cos();
         let n = [sin_theta * c, sin_theta * s, mu];
-        let (x, y, z) = (r * n[0], r * n[1], r * n[2]);
         let cos_i = mu;
-        let (f, cos_t) = fresnel(cos_i, self.eta);
+        let (f, cos_t) = fresnel(cos_i, self.walk.eta);
         if f > 0.0 {
             t.specular.add(w0 * f);
         }
@@ -116,72 +160,47 @@ impl SphereWalker<'_> {
         t.entered.add(w);
         // Refraction of d = (0, 0, −1) at the outward normal n:
         // t = d/η + (cos_i/η − cos_t) n.
-        let inv = 1.0 / self.eta;
+        let inv = 1.0 / self.walk.eta;
         let k = cos_i * inv - cos_t;
         let dir = normalise([k * n[0], k * n[1], -inv + k * n[2]]);
-        self.follow(rng, t, [x, y, z], dir, w);
-    }
-
-    fn follow(&self, rng: &mut Rng, t: &mut Tally, pos: [f64; 3], dir: [f64; 3], mut w: f64) {
-        let r = self.radius;
-        let r2 = r * r;
-        let mut p = pos;
-        let mut u = dir;
-        let mut absorbed = 0.0;
+        let p = Photon::new(
+            DVec3::new(r * n[0], r * n[1], r * n[2]),
+            DVec3::from_array(dir),
+            w,
+        );
         // Roulette relative to the entry weight (which the entry sampling makes vary), so a
         // photon's walk does not depend on its weight — and σ_a = 0 never plays it.
         let threshold = ROULETTE_THRESHOLD * w;
-        let inv_eta = 1.0 / self.eta;
-        let mut events: u64 = 0;
-        loop {
-            events += 1;
-            if events > self.max_events {
-                t.capped.add(w);
-                break;
-            }
-            let s = -rng.uniform_pos().ln() / self.sigma_t;
-            // Distance to the sphere along u, in the cancellation-free form.
-            let b = dot(p, u);
-            let c = r2 - dot(p, p); // ≥ 0 inside (up to rounding)
-            let disc = (b * b + c).max(0.0).sqrt();
-            let db = if b > 0.0 { c / (b + disc) } else { disc - b };
-            if s >= db {
-                let db = db.max(0.0);
-                let q = [p[0] + u[0] * db, p[1] + u[1] * db, p[2] + u[2] * db];
-                let n = normalise(q);
-                p = [n[0] * r, n[1] * r, n[2] * r];
-                let cos_i = dot(u, n).max(0.0);
-                let (fr, _) = fresnel(cos_i, inv_eta);
-                if fr > 0.0 && (fr >= 1.0 || rng.uniform() < fr) {
-                    let k = 2.0 * cos_i;
-                    u = normalise([u[0] - k * n[0], u[1] - k * n[1], u[2] - k * n[2]]);
-                    continue;
-                }
-                t.refl.add(w);
-                let theta = n[2].clamp(-1.0, 1.0).acos().to_degrees();
-                if let Some(k) = self.bin(theta) {
-                    t.refl_bins[k].add(w);
-                }
-                break;
-            }
-            p = [p[0] + u[0] * s, p[1] + u[1] * s, p[2] + u[2] * s];
-            absorbed += w * (1.0 - self.albedo);
-            w *= self.albedo;
-            if w < threshold {
-                if w == 0.0 || rng.uniform() >= ROULETTE_SURVIVAL {
-                    absorbed += w;
-                    break;
-                }
-                w /= ROULETTE_SURVIVAL;
-            }
-            let ct = sample_hg_cos(self.g, rng.uniform());
-            let phi = 2.0 * PI * rng.uniform();
-            u = rotate(u, ct, phi);
+        let mut score = BandScore { scene: self, t };
+        self.walk
+            .follow(&self.ball, (), &mut score, rng, p, threshold);
+    }
+}
+
+/// The sphere's tallies of one photon: every exit, and its band.
+struct BandScore<'s, 'a> {
+    scene: &'s SphereWalker<'a>,
+    t: &'s mut Tally,
+}
+
+impl Scoring<Ball> for BandScore<'_, '_> {
+    #[inline]
+    fn exit(&mut self, _: &Ball, p: &Photon, n: &Normal, _: f64) {
+        self.t.refl.add(p.weight);
+        let theta = n.0[2].clamp(-1.0, 1.0).acos().to_degrees();
+        if let Some(k) = self.scene.bin(theta) {
+            self.t.refl_bins[k].add(p.weight);
         }
-        t.events += events.min(self.max_events);
-        if absorbed != 0.0 {
-            t.absorbed.add(absorbed);
-        }
+    }
+
+    #[inline]
+    fn capped(&mut self, w: f64) {
+        self.t.capped.add(w);
+    }
+
+    #[inline]
+    fn done(&mut self, events: u64, absorbed: f64) {
+        self.t.finish_photon(events, absorbed);
     }
 }
 
@@ -197,7 +216,7 @@ pub fn sphere_with(
     seed: u64,
     threads: usize,
 ) -> SphereResults {
-    let (sigma_s, sigma_t) = m.checked_sigmas();
+    let walk = Walk::new(m, max_events);
     assert!(
         radius > 0.0 && radius.is_finite(),
         "mc: sphere radius must be positive"
@@ -213,13 +232,9 @@ pub fn sphere_with(
         );
     }
     let walker = SphereWalker {
-        radius,
-        sigma_t,
-        albedo: sigma_s / sigma_t,
-        g: m.g,
-        eta: m.eta,
+        walk,
+        ball: Ball { radius },
         edges_deg,
-        max_events,
     };
     let nbins = edges_deg.len() - 1;
     let t = run_batches(photons, seed, threads, nbins, |rng, t| {
