@@ -1,19 +1,9 @@
 //! A closed triangle mesh as the boundary of a Monte Carlo medium: ray queries through a BVH
 //! (`obvhs`' compressed wide BVH, f32 boxes) with the triangle tests in f64, and a voxel grid
-//! of safe distances so that most free flights deep inside need no ray query at all.
+//! of safe distances (`mesh_grid.rs`) so that most free flights deep inside need no ray query.
 //!
 //! **Units.** Whatever the caller gives; the Monte Carlo passes millimetres (σ in mm⁻¹).
-//!
-//! **The safe-distance grid.** Voxels of side `h` over the mesh's bounds: every voxel a
-//! triangle's (slightly grown) bounding box touches is a *surface* voxel; the others are flood
-//! filled from the grid's border (6-connected, through non-surface voxels) as *outside*, the
-//! rest are *inside*. Each inside voxel holds its L∞ distance k (in voxels, capped at
-//! [`MAX_SAFE_VOXELS`]) to the nearest surface voxel: every surface point lies in a surface
-//! voxel, so every point of the voxel is at least (k − 1)·h from the surface, and a free flight
-//! shorter than that cannot reach it. A point in an outside voxel is outside the mesh (a photon
-//! found there leaked through a crack: the walk reports it as lost).
 
-use std::collections::VecDeque;
 use std::time::Duration;
 
 use glam::{DVec3, Vec3A};
@@ -23,10 +13,9 @@ use obvhs::ray::{Ray, RayHit};
 use obvhs::triangle::Triangle;
 use obvhs::BvhBuildParams;
 
-/// The largest L∞ voxel distance the grid records (a flight of up to (k − 1)·h needs no query).
-pub const MAX_SAFE_VOXELS: u8 = 8;
-/// Grid value of a voxel outside the mesh.
-const OUTSIDE: u8 = u8::MAX;
+use super::mesh_grid::SafeGrid;
+pub use super::mesh_grid::{DistanceField, MAX_SAFE_VOXELS};
+
 /// Edge tolerance of the f64 triangle test (barycentric units): rays through a shared edge hit
 /// both triangles rather than slipping between them.
 const EDGE_EPS: f64 = 1e-10;
@@ -41,193 +30,6 @@ pub struct Hit {
     /// Barycentric weights of the triangle's second and third vertices.
     pub b1: f64,
     pub b2: f64,
-}
-
-/// Voxel grid of safe distances (module docs).
-struct SafeGrid {
-    origin: DVec3,
-    h: f64,
-    dims: [usize; 3],
-    cells: Vec<u8>,
-}
-
-/// The index of the voxel (side `h`, grid `dims` from `origin`) holding `p`, if any.
-#[inline]
-fn voxel_index(origin: DVec3, h: f64, dims: [usize; 3], p: DVec3) -> Option<usize> {
-    let q = (p - origin) / h;
-    if !(q.x >= 0.0 && q.y >= 0.0 && q.z >= 0.0) {
-        return None;
-    }
-    let (i, j, k) = (q.x as usize, q.y as usize, q.z as usize);
-    let [nx, ny, nz] = dims;
-    (i < nx && j < ny && k < nz).then(|| (k * ny + j) * nx + i)
-}
-
-impl SafeGrid {
-    #[inline]
-    fn index(&self, p: DVec3) -> Option<usize> {
-        voxel_index(self.origin, self.h, self.dims, p)
-    }
-
-    fn build(positions: &[DVec3], triangles: &[[u32; 3]], lo: DVec3, hi: DVec3, h: f64) -> Self {
-        let margin = 2.0 * h;
-        let origin = lo - DVec3::splat(margin);
-        let span = (hi - lo) + DVec3::splat(2.0 * margin);
-        let dims = [
-            (span.x / h).ceil() as usize + 1,
-            (span.y / h).ceil() as usize + 1,
-            (span.z / h).ceil() as usize + 1,
-        ];
-        let [nx, ny, nz] = dims;
-        const UNSET: u8 = OUTSIDE - 1;
-        let mut cells = vec![UNSET; nx * ny * nz];
-        let at = |i: usize, j: usize, k: usize| (k * ny + j) * nx + i;
-        let grow = 1e-6 * h;
-        for t in triangles {
-            let [a, b, c] = t.map(|i| positions[i as usize]);
-            let (tlo, thi) = (a.min(b).min(c) - grow, a.max(b).max(c) + grow);
-            let i0 = ((tlo - origin) / h).floor().max(DVec3::ZERO);
-            let i1 = ((thi - origin) / h).floor();
-            for k in i0.z as usize..=(i1.z as usize).min(nz - 1) {
-                for j in i0.y as usize..=(i1.y as usize).min(ny - 1) {
-                    for i in i0.x as usize..=(i1.x as usize).min(nx - 1) {
-                        cells[at(i, j, k)] = 0;
-                    }
-                }
-            }
-        }
-        // Flood the outside from the border through non-surface voxels.
-        let mut queue = VecDeque::new();
-        for k in 0..nz {
-            for j in 0..ny {
-                for i in 0..nx {
-                    let border = i == 0 || j == 0 || k == 0 || i + 1 == nx || j + 1 == ny;
-                    if (border || k + 1 == nz) && cells[at(i, j, k)] == UNSET {
-                        cells[at(i, j, k)] = OUTSIDE;
-                        queue.push_back((i, j, k));
-                    }
-                }
-            }
-        }
-        while let Some((i, j, k)) = queue.pop_front() {
-            let mut visit = |i: usize, j: usize, k: usize| {
-                let c = &mut cells[at(i, j, k)];
-                if *c == UNSET {
-                    *c = OUTSIDE;
-                    queue.push_back((i, j, k));
-                }
-            };
-            if i > 0 {
-                visit(i - 1, j, k);
-            }
-            if i + 1 < nx {
-                visit(i + 1, j, k);
-            }
-            if j > 0 {
-                visit(i, j - 1, k);
-            }
-            if j + 1 < ny {
-                visit(i, j + 1, k);
-            }
-            if k > 0 {
-                visit(i, j, k - 1);
-            }
-            if k + 1 < nz {
-                visit(i, j, k + 1);
-            }
-        }
-        let dist = linf_distance(&cells, dims, MAX_SAFE_VOXELS);
-        for (c, d) in cells.iter_mut().zip(dist) {
-            if *c != OUTSIDE {
-                *c = d;
-            }
-        }
-        Self {
-            origin,
-            h,
-            dims,
-            cells,
-        }
-    }
-}
-
-/// L∞ distance (in voxels, capped at `cap`) of each voxel to the nearest voxel whose value is
-/// 0: separable, one axis at a time (min over the window of max(|offset|, distance so far)).
-fn linf_distance(cells: &[u8], dims: [usize; 3], cap: u8) -> Vec<u8> {
-    let [nx, ny, _] = dims;
-    let mut dist: Vec<u8> = cells
-        .iter()
-        .map(|&c| if c == 0 { 0 } else { cap })
-        .collect();
-    let strides = [1, nx, nx * ny];
-    for (axis, &stride) in strides.iter().enumerate() {
-        let n = dims[axis];
-        let prev = dist.clone();
-        for (idx, d) in dist.iter_mut().enumerate() {
-            if *d == 0 {
-                continue;
-            }
-            let pos = (idx / stride) % n;
-            let mut best = *d;
-            for off in 1..cap as usize {
-                if off as u8 >= best {
-                    break;
-                }
-                for p in [pos.checked_sub(off), Some(pos + off).filter(|&p| p < n)]
-                    .into_iter()
-                    .flatten()
-                {
-                    let other = prev[idx + p * stride - pos * stride];
-                    best = best.min(other.max(off as u8));
-                }
-            }
-            *d = best;
-        }
-    }
-    dist
-}
-
-/// A coarse voxel field of the L∞ distance (voxels of side `h`, capped) to a set of points:
-/// how far a point is from, say, what the camera sees.
-pub struct DistanceField {
-    origin: DVec3,
-    h: f64,
-    dims: [usize; 3],
-    cap: u8,
-    cells: Vec<u8>,
-}
-
-impl DistanceField {
-    /// The field over the box [lo, hi] (points outside it count as `cap` voxels away).
-    pub fn new(points: &[DVec3], lo: DVec3, hi: DVec3, h: f64, cap: u8) -> Self {
-        let origin = lo - DVec3::splat(h);
-        let span = hi - lo + DVec3::splat(2.0 * h);
-        let dims = [
-            (span.x / h).ceil() as usize + 1,
-            (span.y / h).ceil() as usize + 1,
-            (span.z / h).ceil() as usize + 1,
-        ];
-        let mut marks = vec![1u8; dims[0] * dims[1] * dims[2]];
-        for p in points {
-            if let Some(i) = voxel_index(origin, h, dims, *p) {
-                marks[i] = 0;
-            }
-        }
-        Self {
-            origin,
-            h,
-            dims,
-            cap,
-            cells: linf_distance(&marks, dims, cap),
-        }
-    }
-
-    /// The distance from `p` to the nearest point's voxel, in voxels times h (≥ the true
-    /// distance less one voxel; `cap`·h when far or outside the field).
-    pub fn distance(&self, p: DVec3) -> f64 {
-        voxel_index(self.origin, self.h, self.dims, p).map_or(self.cap, |i| self.cells[i]) as f64
-            * self.h
-    }
 }
 
 /// A closed, outward-wound triangle mesh ready for ray queries (see the module docs).
@@ -419,20 +221,12 @@ impl ClosedMesh {
     /// `None` when `p` is outside the mesh (or its grid).
     #[inline]
     pub fn safe_distance(&self, p: DVec3) -> Option<f64> {
-        let c = self.grid.cells[self.grid.index(p)?];
-        if c == OUTSIDE {
-            return None;
-        }
-        Some((c.max(1) - 1) as f64 * self.grid.h)
+        self.grid.safe_distance(p)
     }
 
     /// Whether `p` is inside the mesh: the first crossing along a fixed direction leaves it.
     pub fn contains(&self, p: DVec3) -> bool {
-        if self
-            .grid
-            .index(p)
-            .is_none_or(|i| self.grid.cells[i] == OUTSIDE)
-        {
+        if self.grid.outside(p) {
             return false;
         }
         let d = DVec3::new(0.267, 0.534, 0.802).normalize();
@@ -453,13 +247,7 @@ impl ClosedMesh {
 
     /// Fractions of the grid's voxels that are (outside, surface, inside) — a build check.
     pub fn grid_fractions(&self) -> (f64, f64, f64) {
-        let n = self.grid.cells.len() as f64;
-        let count = |f: &dyn Fn(u8) -> bool| self.grid.cells.iter().filter(|&&c| f(c)).count();
-        (
-            count(&|c| c == OUTSIDE) as f64 / n,
-            count(&|c| c == 0) as f64 / n,
-            count(&|c| c != OUTSIDE && c != 0) as f64 / n,
-        )
+        self.grid.fractions()
     }
 }
 

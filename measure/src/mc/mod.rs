@@ -85,6 +85,7 @@ pub mod estimate;
 pub(crate) mod flat;
 pub mod fresnel;
 pub mod mesh;
+pub mod mesh_grid;
 pub mod mesh_walk;
 pub mod phase;
 pub mod pigment;
