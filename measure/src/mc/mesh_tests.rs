@@ -210,3 +210,63 @@ fn light_inside_is_detected_and_the_grid_knows_inside_from_outside() {
     let (out, surf, inside) = mesh.grid_fractions();
     assert!(out > 0.0 && surf > 0.0 && inside > 0.0);
 }
+
+#[test]
+fn the_safe_distance_never_exceeds_the_distance_to_the_surface_and_follows_it() {
+    // Convex meshes, where the distance from an inside point to the surface is the least of its
+    // distances to the faces' planes: the box, and a coarse sphere whose large facets make the
+    // voxels' L∞ bound loose.
+    let (pos, nrm, tris) = uv_sphere(4.0, 12, 24);
+    let planes: Vec<(DVec3, DVec3)> = tris
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|i| pos[i as usize]);
+            (a, (b - a).cross(c - a).normalize())
+        })
+        .collect();
+    let ball = ClosedMesh::new(pos, nrm, tris, 0.5).unwrap();
+    let box_planes: Vec<(DVec3, DVec3)> = [
+        (DVec3::new(10.0, 0.0, 0.0), DVec3::X),
+        (DVec3::new(-10.0, 0.0, 0.0), -DVec3::X),
+        (DVec3::new(0.0, 10.0, 0.0), DVec3::Y),
+        (DVec3::new(0.0, -10.0, 0.0), -DVec3::Y),
+        (DVec3::ZERO, DVec3::Z),
+        (DVec3::new(0.0, 0.0, -6.0), -DVec3::Z),
+    ]
+    .into();
+    let cube = slab_box(10.0, 6.0);
+    let mut rng = Rng::new(3, 0);
+    for (mesh, planes, lo, hi) in [
+        (&ball, &planes, DVec3::splat(-4.0), DVec3::splat(4.0)),
+        (
+            &cube,
+            &box_planes,
+            DVec3::new(-10.0, -10.0, -6.0),
+            DVec3::new(10.0, 10.0, 0.0),
+        ),
+    ] {
+        let (mut n, mut deep, mut deep_safe) = (0, 0.0, 0.0);
+        while n < 20_000 {
+            let p = lo + (hi - lo) * DVec3::new(rng.uniform(), rng.uniform(), rng.uniform());
+            let truth = planes
+                .iter()
+                .map(|(a, n)| n.dot(*a - p))
+                .fold(f64::INFINITY, f64::min);
+            if truth <= 0.0 {
+                continue;
+            }
+            n += 1;
+            let safe = mesh
+                .safe_distance(p)
+                .expect("an inside point is not outside");
+            assert!(safe <= truth, "safe {safe} > distance {truth} at {p}");
+            if truth > 1.0 {
+                deep += truth;
+                deep_safe += safe;
+            }
+        }
+        // Deeper than a voxel or two, the bound is most of the distance.
+        println!("safe / distance beyond 1 mm: {:.3}", deep_safe / deep);
+        assert!(deep_safe > 0.6 * deep, "{deep_safe} of {deep}");
+    }
+}
