@@ -3,10 +3,10 @@
 use std::path::PathBuf;
 use std::time::Instant;
 
-use dermis_core::app::{GameFrame, GameGpu, GameLoad, GameSetup};
-use dermis_core::render::{Clock, FrameDriver, Gpu, Offscreen, Output, OFFSCREEN_FORMAT};
-use dermis_core::shading::{material::SKIN1, ShadingModel};
-use dermis_core::still::{Shot, StillRenderer};
+use dermis_engine::render::{Clock, FrameDriver, Gpu, Offscreen, Output, OFFSCREEN_FORMAT};
+use dermis_engine::shading::{material::SKIN1, ShadingModel};
+use dermis_engine::still::{Shot, StillRenderer};
+use dermis_game::app::{GameFrame, GameGpu, GameLoad, GameSetup};
 use serde_json::json;
 
 use crate::cmd::args::{check_out_dir, check_out_file, parse_bench_frames, parse_rounds};
@@ -228,7 +228,7 @@ fn frame(
         .map_err(|e| format!("second frame: {e:?}"))?;
     game_gpu.finish_loading(&gpu);
     let all_pipelines_ms = start.elapsed().as_secs_f64() * 1e3;
-    let texture_bytes = dermis_core::render::uploaded_bytes();
+    let texture_bytes = dermis_engine::render::uploaded_bytes();
     drop(game_gpu);
     let cache_state = match &gpu.pipeline_cache {
         None => "none",

@@ -6,11 +6,13 @@
 
 use std::path::PathBuf;
 
-use dermis_core::face::head::{self, FaceLight, HeadRenderer};
-use dermis_core::face::pfm::FloatImage;
-use dermis_core::render::Gpu;
-use dermis_core::shading::{material::SKIN1, Material, ShadingModel};
+use dermis_engine::asset::head;
+use dermis_engine::render::pfm::FloatImage;
+use dermis_engine::render::Gpu;
+use dermis_engine::scene::face::{self, FaceLight};
+use dermis_engine::shading::{material::SKIN1, Material, ShadingModel};
 use dermis_measure::face::regions::block_regions;
+use dermis_measure::face::render::HeadRenderer;
 use dermis_measure::face::score::{tone_map, Reference, BLOCK, MAX_REL_SE, WIDE_REL_SE};
 use dermis_measure::face::truth::FaceScene;
 use dermis_measure::face::truth_cache::{self, CachedTruth};
@@ -104,7 +106,7 @@ pub fn face_scores(gpu: &Gpu) -> Result<Vec<FaceScore>, String> {
     let model = head::load(&crate::paths::assets_dir(), false).map_err(|e| e.to_string())?;
     let (w, h) = (scene.width, scene.height);
     let mut renderer = HeadRenderer::new(gpu, &model, &SKIN1, w, h, true)?;
-    let camera = head::camera();
+    let camera = face::camera();
     let mut out = Vec::new();
     for shading in ShadingModel::ALL {
         let mut per_light = Vec::new();
@@ -115,7 +117,7 @@ pub fn face_scores(gpu: &Gpu) -> Result<Vec<FaceScore>, String> {
                 shading,
                 &camera,
                 light.position(),
-                head::LIGHT_INTENSITY,
+                face::LIGHT_INTENSITY,
             )?;
             let score = reference.score(&FloatImage::new(w, h, pixels)?)?;
             per_light.push((light.name().to_string(), score.mean_abs_ln));
@@ -143,7 +145,7 @@ pub fn run(args: FaceArgs) -> Result<(), String> {
     let gpu = Gpu::headless().map_err(|e| e.to_string())?;
     let (w, h) = (scene.width, scene.height);
     let mut renderer = HeadRenderer::new(&gpu, &model, &material, w, h, true)?;
-    let camera = head::camera();
+    let camera = face::camera();
     let exposure = exposure(&truths[0].1.reference, &alpha);
     for (_, truth) in &truths {
         let path = args

@@ -16,12 +16,12 @@ use std::path::PathBuf;
 
 use crate::cmd::args::{check_out_dir, parse_rounds};
 use crate::cmd::progress::Progress;
-use dermis_core::anim::Pose;
-use dermis_core::asset::shapes::plane_model;
-use dermis_core::asset::Model;
-use dermis_core::render::{Gpu, Offscreen, PassCtx, PassTimer, Renderer, OFFSCREEN_FORMAT};
-use dermis_core::scene::{DrawSet, FramePacket, FrameView, Light, Roles, SubjectPose};
-use dermis_core::shading::{subsurface, Material, ShadingModel};
+use dermis_engine::anim::Pose;
+use dermis_engine::asset::shapes::plane_model;
+use dermis_engine::asset::Model;
+use dermis_engine::render::{Gpu, Offscreen, PassCtx, PassTimer, Renderer, OFFSCREEN_FORMAT};
+use dermis_engine::scene::{DrawSet, FramePacket, FrameView, Light, Roles, SubjectPose};
+use dermis_engine::shading::{subsurface, Material, ShadingModel};
 use dermis_measure::ground_truth::metric::score;
 use dermis_measure::ground_truth::{self, ReferenceSet};
 use dermis_measure::scenes::SceneRenderer;
@@ -433,7 +433,7 @@ fn build_report(
         "presets": presets,
         "test_materials": ground_truth::test_materials().iter().map(|m| json!({
             "material": m.name, "sigma_a": m.sigma_a, "sigma_s_prime": m.sigma_s_prime,
-            "multi_scatter_albedo": m.albedo().map(|a| dermis_core::shading::albedo::multi_scatter_albedo(a, m.eta, m.g)),
+            "multi_scatter_albedo": m.albedo().map(|a| dermis_engine::shading::albedo::multi_scatter_albedo(a, m.eta, m.g)),
         })).collect::<Vec<_>>(),
         "adapter": gpu.adapter_name(),
         "label": if gpu.is_cpu() { "CPU-rasterizer ratios (software Vulkan), not phone GPU ratios" } else { "GPU timestamp ratios" },

@@ -5,8 +5,8 @@
 //! isotropic point light of unit power at height H; the output is M(r) averaged over annuli,
 //! in mm⁻² per unit source power (the Monte Carlo's units, `tools/reference/*.json`).
 
-use dermis_core::render::Gpu;
-use dermis_core::shading::{Material, ShadingModel};
+use dermis_engine::render::Gpu;
+use dermis_engine::shading::{Material, ShadingModel};
 use dermis_measure::ground_truth::{self, Scene};
 use dermis_measure::scenes::SceneRenderer;
 use serde_json::{json, Map, Value};

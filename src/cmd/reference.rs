@@ -9,7 +9,7 @@ use crate::cmd::args::{
     check_out_dir, parse_reference_photons, parse_seed, parse_threads, parse_vec3,
 };
 use crate::cmd::progress::Progress;
-use dermis_core::shading::material::{Material, SKIN1, WHITE_COAT};
+use dermis_engine::shading::material::{Material, SKIN1, WHITE_COAT};
 use dermis_measure::ground_truth::{self, ReferenceSet};
 
 #[derive(clap::Args, Debug)]

@@ -5,7 +5,8 @@
 
 use std::path::Path;
 
-use dermis_core::face::head::{self, FaceLight};
+use dermis_engine::asset::head;
+use dermis_engine::scene::face::{self, FaceLight};
 use dermis_measure::face::score::{Reference, BLOCK, MAX_REL_SE};
 use dermis_measure::face::truth::{self, FaceScene, Truth, TruthRun};
 use dermis_measure::face::truth_cache;
@@ -64,7 +65,7 @@ pub fn run(args: &ReferenceArgs) -> Result<(), String> {
             &mesh,
             name,
             *position,
-            head::LIGHT_INTENSITY,
+            face::LIGHT_INTENSITY,
             &run,
             &mut |d, t| progress.set(d, t, "photons"),
         )?;

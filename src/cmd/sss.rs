@@ -1,6 +1,6 @@
 //! `dermis sss`: every model's total diffuse reflectance next to the Monte Carlo reference.
 
-use dermis_core::shading::{prediction, Material, ShadingModel};
+use dermis_engine::shading::{prediction, Material, ShadingModel};
 use dermis_measure::mc::{self, Medium};
 use serde_json::{json, Map, Value};
 
