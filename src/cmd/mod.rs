@@ -9,6 +9,7 @@ pub mod chart;
 pub mod face_diagnosis;
 pub mod gputime;
 pub mod lut;
+pub mod material_args;
 pub mod pareto;
 pub mod play;
 pub mod pose;
