@@ -3,6 +3,7 @@ pub mod args;
 pub mod bench;
 pub mod bench_effects;
 pub mod bench_face;
+pub mod bench_face_sweep;
 pub mod bench_shading;
 pub mod bench_textures;
 pub mod chart;

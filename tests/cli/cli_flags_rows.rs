@@ -325,6 +325,12 @@ pub const ROWS: &[Row] = &[
         &["--out", "{tmp}/face"],
     ),
     row("bench face", "no-normal-map", Kind::Switch),
+    with(
+        "bench face",
+        "sweep",
+        Kind::InFile,
+        &["--out", "{tmp}/face"],
+    ),
     row("bench shading", "out", Kind::OutDir),
     row("bench shading", "rounds", Kind::Count),
     with(
