@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use clap::{Parser, Subcommand};
-use dermis_core::shading::{Material, ShadingModel};
+use dermis_engine::shading::{Material, ShadingModel};
 
 use crate::cmd;
 use crate::cmd::args::{self, parse_material, parse_model};
@@ -205,9 +205,9 @@ pub fn run(cli: Cli) -> Result<(), String> {
     }
 }
 
-/// The command-line table the table test (`tests/cli_flags.rs`) runs.
+/// The command-line table the table test (`tests/cli/cli_flags.rs`) runs.
 #[cfg(test)]
-#[path = "../tests/cli_flags/rows.rs"]
+#[path = "../tests/cli/cli_flags_rows.rs"]
 mod rows;
 
 #[cfg(test)]
@@ -255,7 +255,7 @@ mod tests {
                 .collect();
             let [row] = rows[..] else {
                 problems.push(format!(
-                    "`{cmd} --{flag}`: {} rows in tests/cli_flags/rows.rs (want 1)",
+                    "`{cmd} --{flag}`: {} rows in tests/cli/cli_flags_rows.rs (want 1)",
                     rows.len()
                 ));
                 continue;

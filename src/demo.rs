@@ -3,16 +3,16 @@
 
 use std::path::Path;
 
-use dermis_core::anim::Pose;
-use dermis_core::camera::FollowCamera;
-use dermis_core::render::{
+use dermis_engine::anim::Pose;
+use dermis_engine::camera::FollowCamera;
+use dermis_engine::render::{
     FrameOutput, FrameWork, Gpu, PassCtx, PreparedFrame, RenderStats, Renderer,
 };
-use dermis_core::scene::{
+use dermis_engine::scene::{
     posed_bounds, showroom, DrawSet, FramePacket, FrameView, Light, PropInstance, Roles,
     SceneAssets, SubjectPose, CHARACTER, EXPOSURE,
 };
-use dermis_core::shading::{material::PRESETS, Material, ShadingModel};
+use dermis_engine::shading::{material::PRESETS, Material, ShadingModel};
 use glam::{Mat4, Quat, Vec3};
 
 pub struct Demo {

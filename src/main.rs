@@ -11,7 +11,7 @@ use std::process::ExitCode;
 use clap::Parser;
 
 #[global_allocator]
-static ALLOCATOR: dermis_core::heap::Counting = dermis_core::heap::Counting;
+static ALLOCATOR: dermis_engine::heap::Counting = dermis_engine::heap::Counting;
 
 fn main() -> ExitCode {
     env_logger::Builder::from_env(

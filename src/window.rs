@@ -8,12 +8,12 @@
 use std::path::PathBuf;
 use std::sync::Arc;
 
-use dermis_core::app::{GameFrame, GameGpu, GameLoad, GameSetup, Key as GameKey, Session};
-use dermis_core::lifecycle::FrameStatus;
-use dermis_core::render::{
+use dermis_engine::render::{
     FrameDriver, FrameOutput, Gpu, Output, Renderer, SurfaceOptions, SurfaceTarget,
 };
-use dermis_core::scene::SceneAssets;
+use dermis_engine::scene::SceneAssets;
+use dermis_game::app::{GameFrame, GameGpu, GameLoad, GameSetup, Key as GameKey, Session};
+use dermis_game::lifecycle::FrameStatus;
 use winit::application::ApplicationHandler;
 use winit::event::{ElementState, KeyEvent, MouseButton, WindowEvent};
 use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoop};
@@ -158,7 +158,7 @@ impl App {
         let (mut gpu, surface) = Gpu::with_surface(|| window.clone()).map_err(|e| e.to_string())?;
         log::info!("rendering with {}", gpu.adapter_name());
         // Last launch's pipelines ($XDG_CACHE_HOME/dermis), saved again at exit.
-        if let Some(dir) = dermis_core::render::pipeline_cache::desktop_dir() {
+        if let Some(dir) = dermis_engine::render::pipeline_cache::desktop_dir() {
             gpu.use_pipeline_cache(&dir);
         }
         let size = window.inner_size();
@@ -232,8 +232,8 @@ impl App {
                 "c" => session.key(GameKey::Camera),
                 "h" => session.key(GameKey::Subject),
                 "Escape" => match session.game.screen() {
-                    dermis_core::game::Screen::Main => event_loop.exit(),
-                    dermis_core::game::Screen::Play if !session.is_paused() => session.pause(),
+                    dermis_game::rules::Screen::Main => event_loop.exit(),
+                    dermis_game::rules::Screen::Play if !session.is_paused() => session.pause(),
                     _ => session.game.to_main(),
                 },
                 _ => return,
@@ -396,7 +396,7 @@ impl ApplicationHandler for App {
 }
 
 mod screenshot {
-    use dermis_core::render::{read_mapped, Gpu};
+    use dermis_engine::render::{read_mapped, Gpu};
 
     fn padded_row(width: u32) -> u32 {
         (width * 4).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT)

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Renders the gallery (the paper's Fig. 1, white coat lit from above, and Fig. 2, skin, under
 # every shading model) with `dermis render` into docs/gallery/: one image per line of
-# docs/gallery/shots.txt. tests/gallery.rs checks the committed images against the renderer,
+# docs/gallery/shots.txt. tests/cli/gallery.rs checks the committed images against the renderer,
 # so run this after any change that moves pixels.
 # Usage: bash tools/gallery.sh [path/to/dermis]   (default: target/release/dermis)
 set -euo pipefail

@@ -9,9 +9,9 @@ use crate::lifecycle::{self, Action, Event, Lifecycle};
 use crate::soak::{Soak, SoakConfig};
 use android_activity::input::{InputEvent, KeyAction, Keycode, MotionAction};
 use android_activity::{AndroidApp, InputStatus, MainEvent, PollEvent, WindowManagerFlags};
-use dermis_core::app::{Key, Session};
-use dermis_core::governor::GovernorConfig;
-use dermis_core::shading::ShadingModel;
+use dermis_engine::shading::ShadingModel;
+use dermis_game::app::{Key, Session};
+use dermis_game::governor::GovernorConfig;
 use std::time::Instant;
 
 /// Entry point called by android-activity on its own thread.
@@ -324,7 +324,7 @@ fn end_soak(app: &AndroidApp, renderer: &mut Renderer, test_loop: bool) {
     };
     if let Some(dir) = out_dir {
         let path = dir.join("soak.json");
-        match dermis_core::soak::write_atomic(&path, &report) {
+        match dermis_game::soak::write_atomic(&path, &report) {
             Ok(()) => log::info!("soak: report written to {}", path.display()),
             Err(e) => log::error!("soak: {e}"),
         }

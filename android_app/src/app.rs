@@ -1,4 +1,4 @@
-//! GPU side of the Android app: the wgpu context ([`dermis_core::render::Gpu`], created once
+//! GPU side of the Android app: the wgpu context ([`dermis_engine::render::Gpu`], created once
 //! on the first window, kept across pause/resume, so limits and features match the desktop),
 //! the game's GPU objects ([`GameGpu`]: every pipeline, the scene and the UI, created with the
 //! first surface and kept), the window surface ([`SurfaceTarget`], the core's one surface
@@ -7,14 +7,14 @@
 //! same [`Session`] loop as the desktop window, the governor choosing the shading tier).
 
 use android_activity::ndk::native_window::NativeWindow;
-use dermis_core::app::{GameFrame, GameGpu, Key, Session};
-use dermis_core::game::Screen;
-use dermis_core::heap::allocations;
-use dermis_core::render::{
+use dermis_engine::heap::allocations;
+use dermis_engine::render::{
     Clock, FrameDriver, FrameStatus, Gpu, Output, SurfaceOptions, SurfaceTarget,
 };
-use dermis_core::scene::SceneAssets;
-use dermis_core::ui::Insets;
+use dermis_engine::scene::SceneAssets;
+use dermis_engine::ui::Insets;
+use dermis_game::app::{GameFrame, GameGpu, Key, Session};
+use dermis_game::rules::Screen;
 use std::path::PathBuf;
 use std::time::Instant;
 use wgpu::rwh::{

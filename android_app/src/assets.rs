@@ -4,7 +4,7 @@
 //! file only says how to read one asset.
 
 use android_activity::ndk::asset::AssetManager;
-use dermis_core::scene::{HeadLoad, SceneAssets};
+use dermis_engine::scene::{HeadLoad, SceneAssets};
 use std::ffi::CString;
 use std::io::Read;
 

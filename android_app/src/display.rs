@@ -2,7 +2,7 @@
 //!
 //! - [`safe_insets`]: the larger of the system-window insets (status/navigation bars, API 20+)
 //!   and the display cutout's safe insets (API 28+), in physical pixels, for `Ui::begin`: the
-//!   UI anchors every widget inside the safe area (`core/tests/ui_safe_area.rs`). Any JNI
+//!   UI anchors every widget inside the safe area (`game/tests/game/ui_safe_area.rs`). Any JNI
 //!   failure (an older API, no attached view yet) gives zero insets and one log line.
 //! - [`enter_immersive`]: hides the system bars, shown again transiently by a swipe (API 30+
 //!   `WindowInsetsController`); older devices keep the theme's full screen (status bar hidden,
@@ -10,7 +10,7 @@
 //!   cutouts (`res/values-v28/styles.xml`).
 
 use android_activity::AndroidApp;
-use dermis_core::ui::Insets;
+use dermis_engine::ui::Insets;
 use jni::objects::JObject;
 use jni::{jni_sig, jni_str, Env, JValue};
 

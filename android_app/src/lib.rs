@@ -6,13 +6,13 @@
 //! compiled for `target_os = "android"` only, since android-activity refuses other targets.
 
 /// The lifecycle state machine lives in the core (platform-free, tested on the desktop).
-pub use dermis_core::lifecycle;
+pub use dermis_game::lifecycle;
 
 /// Heap allocations are counted (the soak reports them per frame) and the Rust heap's live
 /// bytes measured, as on the desktop.
 #[cfg(target_os = "android")]
 #[global_allocator]
-static ALLOCATOR: dermis_core::heap::Counting = dermis_core::heap::Counting;
+static ALLOCATOR: dermis_engine::heap::Counting = dermis_engine::heap::Counting;
 
 #[cfg(target_os = "android")]
 mod android;

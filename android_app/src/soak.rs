@@ -14,10 +14,10 @@
 //! 60 fps.
 
 use crate::ndk_dl::{HintSession, Thermal, ThermalSample};
-use dermis_core::app::{soak_sample, Session};
-use dermis_core::render::{FrameTimes, Gpu, LiveObjects};
-use dermis_core::shading::ShadingModel;
-use dermis_core::soak::{
+use dermis_engine::render::{FrameTimes, Gpu, LiveObjects};
+use dermis_engine::shading::ShadingModel;
+use dermis_game::app::{soak_sample, Session};
+use dermis_game::soak::{
     config_json, report, summary_lines, Recorder, RecorderConfig, RunInfo, Writer,
 };
 use serde_json::{json, Value};

@@ -1,10 +1,10 @@
-//! The bake of the A ↔ α' table (`dermis_core::shading::albedo`, `assets/sss/albedo.table`)
+//! The bake of the A ↔ α' table (`dermis_engine::shading::albedo`, `assets/sss/albedo.table`)
 //! and its check: a flat medium made from a multi-scatter albedo A reflects A, measured by
 //! the plane-parallel walker ([`mc::total_reflectance_diffuse`]: implicit absorption, an
 //! estimator independent of the table's white walk), against the same check for the
 //! `KHR_materials_volume_scatter` draft's analytic relation.
 
-use dermis_core::shading::albedo::{self, node_albedo, row_eta, Table, ETA_NODES, S_NODES};
+use dermis_engine::shading::albedo::{self, node_albedo, row_eta, Table, ETA_NODES, S_NODES};
 
 use crate::mc::{self, Estimate, Medium};
 

@@ -1,4 +1,4 @@
-//! The Monte Carlo bakes of the spatial models' tables (`dermis_core::shading::bake`: kernel,
+//! The Monte Carlo bakes of the spatial models' tables (`dermis_engine::shading::bake`: kernel,
 //! q(μ), δ(μ), slab transmittances) and, in [`crate::lut`], of the pre-integration LUT. Run
 //! offline by `dermis lut` (the shipped `assets/sss/*.tables` and `*.lut`) and, through
 //! [`install`], for a material no shipped file covers (the measurement commands' `--eta`,
@@ -7,10 +7,10 @@
 //! Seeds are fixed and differ from every reference set's, photons in fixed batches, so a bake
 //! is deterministic and independent of the thread count.
 
-use dermis_core::shading::bake::{
+use dermis_engine::shading::bake::{
     self, oblique_node, ring_edges, Bake, Budget, OBLIQUE_NODES, SLAB_FIRST_MM, SLAB_NODES,
 };
-use dermis_core::shading::{fresnel, preintegrated, Material};
+use dermis_engine::shading::{fresnel, preintegrated, Material};
 
 use crate::mc::{self, Medium};
 
@@ -272,8 +272,8 @@ pub fn asymptotic_decay(sigma_a: f64, sigma_s_prime: f64) -> f64 {
 mod tests {
     use super::*;
     use crate::ground_truth::acceptance_material;
-    use dermis_core::shading::material::{PRESETS, SKIN1};
-    use dermis_core::shading::subsurface;
+    use dermis_engine::shading::material::{PRESETS, SKIN1};
+    use dermis_engine::shading::subsurface;
     use glam::DVec3;
 
     #[test]

@@ -1,13 +1,13 @@
-//! The Monte Carlo bake of `preintegrated`'s LUT (`dermis_core::shading::preintegrated`): per
+//! The Monte Carlo bake of `preintegrated`'s LUT (`dermis_engine::shading::preintegrated`): per
 //! row radius ρ and channel, the exitance of a homogeneous sphere under a directional light,
 //! measured by the sphere walker ([`mc::sphere_with`]), stored as log2 M, plus the two factor
 //! rows. `dermis lut` writes the shipped ones (`assets/sss/*.lut`).
 
-use dermis_core::shading::bake::{Bake, Budget, SLAB_FIRST_MM};
-use dermis_core::shading::preintegrated::{
+use dermis_engine::shading::bake::{Bake, Budget, SLAB_FIRST_MM};
+use dermis_engine::shading::preintegrated::{
     params_from, row_radius_mm, Lut, LUT_ROWS, LUT_U, LUT_V, SLAB_SPAN,
 };
-use dermis_core::shading::{fresnel, subsurface, Material};
+use dermis_engine::shading::{fresnel, subsurface, Material};
 
 use crate::mc;
 
@@ -224,9 +224,9 @@ mod tests {
     use super::*;
     use crate::bake::{measure, QUICK_BUDGET};
     use crate::ground_truth::acceptance_material;
-    use dermis_core::shading::bake;
-    use dermis_core::shading::material::{PRESETS, SKIN1};
-    use dermis_core::shading::preintegrated::{file_name, lut, SHIPPED};
+    use dermis_engine::shading::bake;
+    use dermis_engine::shading::material::{PRESETS, SKIN1};
+    use dermis_engine::shading::preintegrated::{file_name, lut, SHIPPED};
 
     #[test]
     fn every_preset_has_a_shipped_lut_at_the_current_budget() {

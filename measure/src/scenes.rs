@@ -17,12 +17,12 @@
 
 use glam::{Mat4, Vec3};
 
-use dermis_core::anim::Pose;
-use dermis_core::asset::shapes::{plane_model, sphere_model};
-use dermis_core::asset::Model;
-use dermis_core::render::{Gpu, Offscreen, Renderer};
-use dermis_core::scene::{DrawSet, FramePacket, FrameView, Light, Roles, SubjectPose};
-use dermis_core::shading::{fresnel, subsurface, units, Material, ShadingModel};
+use dermis_engine::anim::Pose;
+use dermis_engine::asset::shapes::{plane_model, sphere_model};
+use dermis_engine::asset::Model;
+use dermis_engine::render::{Gpu, Offscreen, Renderer};
+use dermis_engine::scene::{DrawSet, FramePacket, FrameView, Light, Roles, SubjectPose};
+use dermis_engine::shading::{fresnel, subsurface, units, Material, ShadingModel};
 
 use crate::ground_truth::Scene;
 
@@ -394,7 +394,7 @@ fn edge_occluder(theta: f32, half_mm: f64) -> Occluder {
 /// view so nothing but the medium is seen; its thickness makes OSS see the depth it uses for
 /// a semi-infinite medium.
 fn plane(half_mm: f64) -> Geometry {
-    let depth_mm = dermis_core::shading::prediction::OSS_SEMI_INFINITE_MM;
+    let depth_mm = dermis_engine::shading::prediction::OSS_SEMI_INFINITE_MM;
     Geometry::Plane {
         half_mm: half_mm * 1.5,
         thickness_mm: depth_mm / units::OSS_DEPTH_SCALE,

@@ -26,8 +26,8 @@ use serde::{Deserialize, Serialize};
 
 use crate::mc::pigment::{self, Bins, Light, Stripes, Textured, Texturing};
 use crate::mc::Estimate;
-use dermis_core::shading::albedo::single_scatter_albedo;
-use dermis_core::shading::subsurface::exit_normalisation;
+use dermis_engine::shading::albedo::single_scatter_albedo;
+use dermis_engine::shading::subsurface::exit_normalisation;
 
 /// Relative index of refraction of every scene.
 pub const ETA: f64 = 1.4;

@@ -1,8 +1,8 @@
-//! The core's discrete-ordinates transport solution (`dermis_core::shading::transport`, what
+//! The core's discrete-ordinates transport solution (`dermis_engine::shading::transport`, what
 //! `burley` reads its albedo from) against the exact index-matched half-space and the Monte
 //! Carlo itself.
 
-use dermis_core::shading::transport::diffuse_reflectance;
+use dermis_engine::shading::transport::diffuse_reflectance;
 use dermis_measure::mc::{self, chandrasekhar::plane_albedo};
 
 const SKIN1_SA: [f64; 3] = [0.032, 0.17, 0.48];

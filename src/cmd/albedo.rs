@@ -5,7 +5,7 @@
 //! walker under diffuse light; what each reflects (per incident power) against A. An A above
 //! C(η) (what a white medium reflects: 0.923 at η = 1.4) is not a medium's and is skipped.
 
-use dermis_core::shading::subsurface::exit_normalisation;
+use dermis_engine::shading::subsurface::exit_normalisation;
 use dermis_measure::albedo::{sweep_photons, sweep_row, SweepRow};
 use serde_json::json;
 

@@ -233,7 +233,7 @@ pub fn parse_vec3(s: &str) -> Result<Vec3, String> {
 pub fn shading_help(what: &str) -> String {
     format!(
         "{what} (one of: {})",
-        dermis_core::shading::ShadingModel::names()
+        dermis_engine::shading::ShadingModel::names()
     )
 }
 
@@ -285,14 +285,14 @@ pub fn check_out_dir(dir: &Path) -> Result<(), String> {
 }
 
 /// A shading model by its registry name.
-pub fn parse_model(s: &str) -> Result<dermis_core::shading::ShadingModel, String> {
+pub fn parse_model(s: &str) -> Result<dermis_engine::shading::ShadingModel, String> {
     s.parse()
 }
 
 /// A material preset by name.
-pub fn parse_material(s: &str) -> Result<dermis_core::shading::Material, String> {
-    use dermis_core::shading::material::PRESETS;
-    dermis_core::shading::Material::preset(s).ok_or_else(|| {
+pub fn parse_material(s: &str) -> Result<dermis_engine::shading::Material, String> {
+    use dermis_engine::shading::material::PRESETS;
+    dermis_engine::shading::Material::preset(s).ok_or_else(|| {
         let known: Vec<&str> = PRESETS.iter().map(|m| &*m.name).collect();
         format!("unknown material `{s}` (known: {})", known.join(", "))
     })
@@ -300,7 +300,7 @@ pub fn parse_material(s: &str) -> Result<dermis_core::shading::Material, String>
 
 /// `--skin`: `MATERIAL[=PRESET],…` or `none` (the material names are checked against the
 /// character once it is read).
-pub fn parse_skin(s: &str) -> Result<dermis_core::asset::skin::SkinChoice, String> {
+pub fn parse_skin(s: &str) -> Result<dermis_engine::asset::skin::SkinChoice, String> {
     s.parse()
 }
 
@@ -322,7 +322,7 @@ pub struct CharacterArgs {
     /// (KHR_materials_volume_scatter), else materials named like skin. The game keeps it in
     /// its settings for that file.
     #[arg(long, value_parser = parse_skin)]
-    pub skin: Option<dermis_core::asset::skin::SkinChoice>,
+    pub skin: Option<dermis_engine::asset::skin::SkinChoice>,
     /// The character's idle clip (its name or #N), over the search by name.
     #[arg(long, value_parser = parse_clip)]
     pub idle_clip: Option<String>,
@@ -339,8 +339,8 @@ pub struct CharacterArgs {
 
 impl CharacterArgs {
     /// The clips named, by role.
-    pub fn clips(&self) -> Vec<(dermis_core::anim::ClipRole, String)> {
-        use dermis_core::anim::ClipRole as R;
+    pub fn clips(&self) -> Vec<(dermis_engine::anim::ClipRole, String)> {
+        use dermis_engine::anim::ClipRole as R;
         [
             (R::Idle, &self.idle_clip),
             (R::Run, &self.run_clip),

@@ -3,10 +3,10 @@
 use std::path::PathBuf;
 use std::time::Instant;
 
-use dermis_core::app::{GameFrame, GameGpu, GameLoad, GameSetup};
-use dermis_core::render::{Clock, FrameDriver, Gpu, Offscreen, Output, OFFSCREEN_FORMAT};
-use dermis_core::shading::{material::SKIN1, ShadingModel};
-use dermis_core::still::{Shot, StillRenderer};
+use dermis_engine::render::{Clock, FrameDriver, Gpu, Offscreen, Output, OFFSCREEN_FORMAT};
+use dermis_engine::shading::{material::SKIN1, ShadingModel};
+use dermis_engine::still::{Shot, StillRenderer};
+use dermis_game::app::{GameFrame, GameGpu, GameLoad, GameSetup};
 use serde_json::json;
 
 use crate::cmd::args::{check_out_dir, check_out_file, parse_bench_frames, parse_rounds};
@@ -55,7 +55,7 @@ pub enum BenchKind {
     /// decoded on the CPU, the PNG/JPEG sources decoded): CPU time and GPU bytes of each.
     Textures(crate::cmd::bench_textures::TexturesArgs),
     /// The accuracy-vs-time table: errors against Monte Carlo, GPU cost, shader size.
-    Shading(crate::cmd::bench_shading::ShadingArgs),
+    Shading(Box<crate::cmd::bench_shading::ShadingArgs>),
     /// GPU and CPU time saved by effect scheduling (tier by coverage and light), on/off ratios.
     Effects(crate::cmd::bench_effects::EffectsArgs),
     /// Every model on the scanned head against its cached Monte Carlo truth (`dermis reference --scene head`).
@@ -76,7 +76,7 @@ pub fn run(args: BenchArgs) -> Result<(), String> {
             (first_frame_only, cache) => frame(rounds, frames, out, json, first_frame_only, cache),
         },
         BenchKind::Textures(args) => crate::cmd::bench_textures::run(args),
-        BenchKind::Shading(args) => crate::cmd::bench_shading::run(args),
+        BenchKind::Shading(args) => crate::cmd::bench_shading::run(*args),
         BenchKind::Effects(args) => crate::cmd::bench_effects::run(args),
         BenchKind::Face(args) => crate::cmd::bench_face::run(args),
     }
@@ -228,7 +228,7 @@ fn frame(
         .map_err(|e| format!("second frame: {e:?}"))?;
     game_gpu.finish_loading(&gpu);
     let all_pipelines_ms = start.elapsed().as_secs_f64() * 1e3;
-    let texture_bytes = dermis_core::render::uploaded_bytes();
+    let texture_bytes = dermis_engine::render::uploaded_bytes();
     drop(game_gpu);
     let cache_state = match &gpu.pipeline_cache {
         None => "none",

@@ -1,11 +1,11 @@
 //! `dermis bench effects`: what each effect-scheduling decision saves, on the runner scene on
 //! autoplay, offscreen, every frame's GPU pass timed ([`TimerRing`]) and waited for.
 
-use dermis_core::app::{GameFrame, GameGpu, Session};
-use dermis_core::governor::{Governor, GovernorConfig, Tiers};
-use dermis_core::render::{Clock, FrameDriver, Gpu, Offscreen, Output, OFFSCREEN_FORMAT};
-use dermis_core::scene::SceneAssets;
-use dermis_core::shading::ShadingModel;
+use dermis_engine::render::{Clock, FrameDriver, Gpu, Offscreen, Output, OFFSCREEN_FORMAT};
+use dermis_engine::scene::SceneAssets;
+use dermis_engine::shading::ShadingModel;
+use dermis_game::app::{GameFrame, GameGpu, Session};
+use dermis_game::governor::{Governor, GovernorConfig, Tiers};
 use serde_json::{json, Value};
 
 use crate::cmd::args::parse_model;

@@ -6,11 +6,13 @@
 
 use std::path::PathBuf;
 
-use dermis_core::face::head::{self, FaceLight, HeadRenderer};
-use dermis_core::face::pfm::FloatImage;
-use dermis_core::render::Gpu;
-use dermis_core::shading::{material::SKIN1, Material, ShadingModel};
+use dermis_engine::asset::head;
+use dermis_engine::render::pfm::FloatImage;
+use dermis_engine::render::Gpu;
+use dermis_engine::scene::face::{self, FaceLight};
+use dermis_engine::shading::{material::SKIN1, Material, ShadingModel};
 use dermis_measure::face::regions::block_regions;
+use dermis_measure::face::render::HeadRenderer;
 use dermis_measure::face::score::{tone_map, Reference, BLOCK, MAX_REL_SE, WIDE_REL_SE};
 use dermis_measure::face::truth::FaceScene;
 use dermis_measure::face::truth_cache::{self, CachedTruth};
@@ -31,6 +33,12 @@ pub struct FaceArgs {
     /// share of the error.
     #[arg(long)]
     pub no_normal_map: bool,
+    /// Every light cached in this folder and its sub-folders (one `dermis reference --scene
+    /// head --light X,Y,Z --out DIR/NAME` each): the sweep's table (strict and wide score per
+    /// model and light against the goal for the light's direction) and a contact sheet per
+    /// spatial model (`sweep.md`, `sweep.json`, `sweep-<model>.png`).
+    #[arg(long, conflicts_with = "cache")]
+    pub sweep: Option<PathBuf>,
 }
 
 /// The default cache directory.
@@ -70,7 +78,7 @@ pub fn flip_mean(
 
 /// The exposure the pairs are tone-mapped at: the front reference's mean over the head to
 /// 0.35 (mid-grey after the curve).
-fn exposure(front: &Reference, alpha: &[f32]) -> f32 {
+pub fn exposure(front: &Reference, alpha: &[f32]) -> f32 {
     let (mut sum, mut n) = (0.0f64, 0usize);
     for (p, a) in front.full.pixels.iter().zip(alpha) {
         if *a >= 0.999 {
@@ -104,7 +112,7 @@ pub fn face_scores(gpu: &Gpu) -> Result<Vec<FaceScore>, String> {
     let model = head::load(&crate::paths::assets_dir(), false).map_err(|e| e.to_string())?;
     let (w, h) = (scene.width, scene.height);
     let mut renderer = HeadRenderer::new(gpu, &model, &SKIN1, w, h, true)?;
-    let camera = head::camera();
+    let camera = face::camera();
     let mut out = Vec::new();
     for shading in ShadingModel::ALL {
         let mut per_light = Vec::new();
@@ -115,7 +123,7 @@ pub fn face_scores(gpu: &Gpu) -> Result<Vec<FaceScore>, String> {
                 shading,
                 &camera,
                 light.position(),
-                head::LIGHT_INTENSITY,
+                face::LIGHT_INTENSITY,
             )?;
             let score = reference.score(&FloatImage::new(w, h, pixels)?)?;
             per_light.push((light.name().to_string(), score.mean_abs_ln));
@@ -127,6 +135,9 @@ pub fn face_scores(gpu: &Gpu) -> Result<Vec<FaceScore>, String> {
 
 pub fn run(args: FaceArgs) -> Result<(), String> {
     check_out_dir(&args.out)?;
+    if let Some(dir) = &args.sweep {
+        return crate::cmd::bench_face_sweep::run(&args, dir);
+    }
     let dir = args.cache.unwrap_or_else(default_cache);
     let scene = FaceScene::head(&crate::paths::assets_dir())?;
     let truths = truth_cache::load_all(&dir, &scene)?;
@@ -143,7 +154,7 @@ pub fn run(args: FaceArgs) -> Result<(), String> {
     let gpu = Gpu::headless().map_err(|e| e.to_string())?;
     let (w, h) = (scene.width, scene.height);
     let mut renderer = HeadRenderer::new(&gpu, &model, &material, w, h, true)?;
-    let camera = head::camera();
+    let camera = face::camera();
     let exposure = exposure(&truths[0].1.reference, &alpha);
     for (_, truth) in &truths {
         let path = args

@@ -7,10 +7,10 @@
 
 use std::time::Instant;
 
-use dermis_core::asset::{dir_reader, load_gltf_slice, Model, Texels};
-use dermis_core::face::head;
-use dermis_core::render::{upload_texture, uploaded_bytes, Gpu};
-use dermis_core::scene::PropKind;
+use dermis_engine::asset::head;
+use dermis_engine::asset::{dir_reader, load_gltf_slice, Model, Texels};
+use dermis_engine::render::{upload_texture, uploaded_bytes, Gpu};
+use dermis_engine::scene::PropKind;
 use serde_json::json;
 
 use crate::cmd::args::parse_rounds;

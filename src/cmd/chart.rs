@@ -5,8 +5,8 @@ use std::ops::Range;
 use std::path::Path;
 use std::sync::Once;
 
-use dermis_core::shading::ShadingModel;
-use dermis_core::soak::SecondRec;
+use dermis_engine::shading::ShadingModel;
+use dermis_game::soak::SecondRec;
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;

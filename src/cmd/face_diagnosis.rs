@@ -9,8 +9,8 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use dermis_core::face::pfm::FloatImage;
-use dermis_core::shading::ShadingModel;
+use dermis_engine::render::pfm::FloatImage;
+use dermis_engine::shading::ShadingModel;
 use dermis_measure::face::regions::{ln_error_png, region_errors, RegionError};
 use dermis_measure::face::score::{block_means, Reference, BLOCK};
 use serde_json::{json, Value};

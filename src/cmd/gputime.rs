@@ -1,10 +1,10 @@
 //! GPU pass timing shared by the benches: the close-up character pass per shading model,
 //! interleaved so slow drift affects every model alike.
 
-use dermis_core::render::Gpu;
-use dermis_core::scene::SceneAssets;
-use dermis_core::shading::ShadingModel;
-use dermis_core::still::{Shot, StillRenderer};
+use dermis_engine::render::Gpu;
+use dermis_engine::scene::SceneAssets;
+use dermis_engine::shading::ShadingModel;
+use dermis_engine::still::{Shot, StillRenderer};
 
 /// Zooms `shot` until the character covers at least `min_coverage` of the frame; returns the
 /// coverage reached.

@@ -1,15 +1,15 @@
 //! `dermis lut`: bakes what the core ships in `assets/sss/`: the A ↔ α' table
-//! (`albedo.table`, `dermis_core::shading::albedo`), the spatial models' tables and the
+//! (`albedo.table`, `dermis_engine::shading::albedo`), the spatial models' tables and the
 //! pre-integrated skin LUTs (`<material>-eta<η>.tables` and `.lut`, see
-//! `dermis_core::shading::bake` and `dermis_core::shading::preintegrated`).
+//! `dermis_engine::shading::bake` and `dermis_engine::shading::preintegrated`).
 
 use std::path::PathBuf;
 use std::time::Instant;
 
 use crate::cmd::args::check_out_dir;
 use crate::cmd::progress::Progress;
-use dermis_core::shading::material::PRESETS;
-use dermis_core::shading::{bake, preintegrated};
+use dermis_engine::shading::material::PRESETS;
+use dermis_engine::shading::{bake, preintegrated};
 use dermis_measure::bake::{measure, threads};
 use dermis_measure::{ground_truth, lut};
 
@@ -32,7 +32,7 @@ pub struct LutArgs {
 
 /// Bakes the A ↔ α' table (`albedo.table`).
 fn bake_albedo(out: &std::path::Path, threads: usize) -> Result<(), String> {
-    use dermis_core::shading::albedo::ETA_NODES;
+    use dermis_engine::shading::albedo::ETA_NODES;
     use dermis_measure::albedo::{bake_table, PHOTONS, SEED};
     let start = Instant::now();
     let mut progress = Progress::new("lut albedo", ETA_NODES as u64);

@@ -5,7 +5,7 @@
 
 use std::path::Path;
 
-use dermis_core::shading::ShadingModel;
+use dermis_engine::shading::ShadingModel;
 use dermis_measure::ground_truth::metric::ErrorStats;
 use dermis_measure::ground_truth::Scene;
 use serde_json::{json, Value};
@@ -143,7 +143,7 @@ pub fn front_file(report: &Value) -> String {
     let mut out = String::from(
         "# The measured accuracy–cost front (overall error vs Mali-G57 cycles), richest first:\n\
          # the governor's tiers. Written by `dermis bench shading --out DIR`; embedded by\n\
-         # core/src/governor.rs.\n",
+         # game/src/governor.rs.\n",
     );
     for m in front_models(report) {
         out.push_str(&m);
@@ -469,7 +469,7 @@ mod tests {
             front_file(&report),
             "rerun `dermis bench shading --out docs/results`"
         );
-        let names: Vec<String> = dermis_core::governor::front()
+        let names: Vec<String> = dermis_game::governor::front()
             .iter()
             .map(|m| m.name().to_string())
             .collect();

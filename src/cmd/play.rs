@@ -2,12 +2,12 @@
 
 use std::path::PathBuf;
 
-use dermis_core::app::{GameFrame, GameGpu, GameSetup, Session};
-use dermis_core::game::Screen;
-use dermis_core::render::{
+use dermis_engine::render::{
     Clock, FrameDriver, FrameOutput, Gpu, LiveObjects, Offscreen, Output, OFFSCREEN_FORMAT,
 };
-use dermis_core::shading::ShadingModel;
+use dermis_engine::shading::ShadingModel;
+use dermis_game::app::{GameFrame, GameGpu, GameSetup, Session};
+use dermis_game::rules::Screen;
 use serde_json::json;
 
 use crate::cmd::args::parse_model;
@@ -16,7 +16,7 @@ use crate::cmd::args::{
 };
 use crate::cmd::progress::Progress;
 use crate::cmd::stats::{median, percentile};
-use dermis_core::heap::allocations;
+use dermis_engine::heap::allocations;
 
 #[derive(clap::Args, Debug)]
 pub struct PlayArgs {

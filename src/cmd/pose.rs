@@ -3,8 +3,8 @@
 
 use std::path::Path;
 
-use dermis_core::anim::{first_skinned_mesh, skin_positions, Pose};
-use dermis_core::asset::load_gltf;
+use dermis_engine::anim::{first_skinned_mesh, skin_positions, Pose};
+use dermis_engine::asset::load_gltf;
 
 /// Loads `model`, poses it with clip `clip` at `time` seconds (clamped to the clip) and
 /// returns the positions of `vertices` (all when `None`) of the first skinned mesh.

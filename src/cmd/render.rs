@@ -2,11 +2,11 @@
 
 use std::path::PathBuf;
 
-use dermis_core::face::pfm::FloatImage;
-use dermis_core::render::Gpu;
-use dermis_core::scene::SceneAssets;
-use dermis_core::shading::{Material, ShadingModel};
-use dermis_core::still::{Shot, StillRenderer};
+use dermis_engine::render::pfm::FloatImage;
+use dermis_engine::render::Gpu;
+use dermis_engine::scene::SceneAssets;
+use dermis_engine::shading::{Material, ShadingModel};
+use dermis_engine::still::{Shot, StillRenderer};
 use glam::Vec3;
 
 use crate::cmd::args::{
@@ -34,7 +34,7 @@ pub struct RenderArgs {
     /// Which of the character's materials are skin: MATERIAL[=PRESET],… or `none` (default:
     /// what its file declares, else materials named like skin).
     #[arg(long, value_parser = crate::cmd::args::parse_skin)]
-    pub skin: Option<dermis_core::asset::skin::SkinChoice>,
+    pub skin: Option<dermis_engine::asset::skin::SkinChoice>,
     /// Animation clip index (checked against the model before any GPU work).
     #[arg(long, default_value_t = 0, value_parser = parse_index, allow_hyphen_values = true)]
     pub clip: usize,
@@ -63,8 +63,8 @@ pub struct RenderArgs {
     #[arg(long)]
     pub hdr: Option<PathBuf>,
     /// `--scene head`: the light of the face scenes (front | side | back) unless `--light`.
-    #[arg(long, default_value = "front", value_parser = dermis_core::face::head::FaceLight::parse)]
-    pub face_light: dermis_core::face::head::FaceLight,
+    #[arg(long, default_value = "front", value_parser = dermis_engine::scene::face::FaceLight::parse)]
+    pub face_light: dermis_engine::scene::face::FaceLight,
     /// `--scene head`: leave the albedo map off (white: the path-traced reference's medium).
     #[arg(long)]
     pub plain: bool,

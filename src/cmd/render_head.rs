@@ -2,11 +2,13 @@
 //! a PNG and/or linear radiance (`--hdr F.pfm`, the units and camera of the path-traced
 //! references), or its scene exported for the path tracer (`--export DIR`).
 
-use dermis_core::face::head::{self, HeadRenderer};
-use dermis_core::face::pfm::FloatImage;
-use dermis_core::render::Gpu;
-use dermis_core::scene::Light;
+use dermis_engine::asset::head;
+use dermis_engine::render::pfm::FloatImage;
+use dermis_engine::render::Gpu;
+use dermis_engine::scene::face;
+use dermis_engine::scene::Light;
 use dermis_measure::face::export;
+use dermis_measure::face::render::HeadRenderer;
 use glam::Vec3;
 
 use super::render::RenderArgs;
@@ -26,7 +28,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
     let material = args
         .material
         .clone()
-        .unwrap_or_else(|| dermis_core::shading::material::DEFAULT_SKIN.clone());
+        .unwrap_or_else(|| dermis_engine::shading::material::DEFAULT_SKIN.clone());
     if args.scene != "head" {
         return Err("--export needs --scene head".into());
     }
@@ -46,7 +48,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
     let model = head::load(&assets, !args.plain).map_err(|e| e.to_string())?;
     let gpu = Gpu::headless().map_err(|e| e.to_string())?;
     let (w, h) = args.size;
-    let camera = head::camera();
+    let camera = face::camera();
     let position = args.light.unwrap_or_else(|| args.face_light.position());
     if let Some(out) = &args.out {
         let mut r = HeadRenderer::new(&gpu, &model, &material, w, h, false)?;
@@ -54,7 +56,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
         let light = Light {
             position,
             // The face scenes' light, brighter for display, and a dim fill.
-            intensity: 2.0 * head::LIGHT_INTENSITY,
+            intensity: 2.0 * face::LIGHT_INTENSITY,
             ambient: default.ambient * 0.3,
             ..default
         };
@@ -62,7 +64,7 @@ pub fn run(args: &RenderArgs) -> Result<(), String> {
     }
     if let Some(hdr) = &args.hdr {
         let mut r = HeadRenderer::new(&gpu, &model, &material, w, h, true)?;
-        let pixels = r.radiance(&gpu, args.shading, &camera, position, head::LIGHT_INTENSITY)?;
+        let pixels = r.radiance(&gpu, args.shading, &camera, position, face::LIGHT_INTENSITY)?;
         FloatImage::new(w, h, pixels)?.save(hdr)?;
     }
     println!(

@@ -12,9 +12,9 @@
 
 use std::path::{Path, PathBuf};
 
-use dermis_core::render::build_shader_source;
-use dermis_core::shader::{compose, ShaderDefs};
-use dermis_core::shading::ShadingModel;
+use dermis_engine::render::build_shader_source;
+use dermis_engine::shader::{compose, ShaderDefs};
+use dermis_engine::shading::ShadingModel;
 use serde_json::{Map, Value};
 
 #[derive(clap::Args, Debug)]
@@ -291,10 +291,10 @@ pub fn mali_cost(
 /// passes over the game's grid, for the game's key light and character (the frustum the
 /// renderer fits, so the same number of jumps).
 pub fn penumbra_grid_cycles(mali: &Value, gpu: &str) -> Option<f64> {
-    use dermis_core::render::{jump_steps, ShadowView, PENUMBRA_BLOCK};
-    use dermis_core::scene::{key_light, CHARACTER};
+    use dermis_engine::render::{jump_steps, ShadowView, PENUMBRA_BLOCK};
+    use dermis_engine::scene::{key_light, CHARACTER};
     let bound = |s: &str| mali["shaders"][s][gpu]["frag"]["bound"].as_f64();
-    let size = dermis_core::render::SHADOW_MAP_SIZE;
+    let size = dermis_engine::render::SHADOW_MAP_SIZE;
     let (centre, radius) = CHARACTER.sphere_at(glam::Vec3::ZERO);
     let view = ShadowView::fit(key_light(glam::Vec3::ZERO).position, centre, radius, size);
     let grid = size / PENUMBRA_BLOCK;

@@ -38,7 +38,7 @@
 //! Sampled by the writer thread when it receives a second's record (off the game thread):
 //! resident (`/proc/self/statm`), the C allocator's bytes in use (glibc `mallinfo2`: the Rust
 //! heap plus the GPU driver's allocations) and the Rust heap's live bytes (the counting
-//! global allocator, `dermis_core::heap`). The recorder's own memory is fixed (histograms,
+//! global allocator, `dermis_engine::heap`). The recorder's own memory is fixed (histograms,
 //! frame counts per 0.1 s) and reported apart, so a growth in the first two is the engine's
 //! or the driver's, and the resident set adds the allocator's retention (glibc's per-thread
 //! arenas grow and trim in steps of megabytes).
@@ -46,15 +46,15 @@
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
-use dermis_core::app::{soak_sample, GameFrame, GameGpu, Session};
-use dermis_core::governor::GovernorConfig;
-use dermis_core::heap::allocations;
-use dermis_core::render::{
+use dermis_engine::heap::allocations;
+use dermis_engine::render::{
     Clock, FrameDriver, Gpu, LiveObjects, Offscreen, Output, OFFSCREEN_FORMAT,
 };
-use dermis_core::scene::SceneAssets;
-use dermis_core::shading::ShadingModel;
-use dermis_core::soak::{
+use dermis_engine::scene::SceneAssets;
+use dermis_engine::shading::ShadingModel;
+use dermis_game::app::{soak_sample, GameFrame, GameGpu, Session};
+use dermis_game::governor::GovernorConfig;
+use dermis_game::soak::{
     config_json, report, summary_lines, write_atomic, Recorder, RecorderConfig, RunInfo, Writer,
 };
 

@@ -1,7 +1,7 @@
 //! Small statistics for bench reports.
 
 /// The q-quantile (0..=1) by linear interpolation (shared with the soak report).
-pub use dermis_core::soak::percentile;
+pub use dermis_game::soak::percentile;
 
 /// Prints a report as pretty JSON.
 pub fn print_json(report: &serde_json::Value) -> Result<(), String> {

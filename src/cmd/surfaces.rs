@@ -4,7 +4,7 @@
 
 use std::sync::Arc;
 
-use dermis_core::render::{Gpu, LiveObjects, SurfaceOptions, SurfaceTarget};
+use dermis_engine::render::{Gpu, LiveObjects, SurfaceOptions, SurfaceTarget};
 use winit::application::ApplicationHandler;
 use winit::event::WindowEvent;
 use winit::event_loop::{ActiveEventLoop, EventLoop};

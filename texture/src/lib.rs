@@ -1,4 +1,4 @@
-//! The texture formats dermis ships, shared by the engine (`dermis-core`, which reads them)
+//! The texture formats dermis ships, shared by the engine (`dermis-engine`, which reads them)
 //! and `cargo xtask assets` (which makes them) without either building the other: the roles
 //! a material reads an image in ([`TextureRole`]: colour, sRGB, or data, linear), the GPU block formats and their families ([`BlockFormat`], [`Family`]), one image
 //! in a block format in its KTX2 file ([`BlockImage`]), where an image's encodings live

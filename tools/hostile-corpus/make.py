@@ -2,7 +2,7 @@
 """Generates tests/data/hostile/: corrupt, truncated and hostile .glb/.gltf files, plus
 index.tsv (file <TAB> substring <TAB> outcome): an `error` file must fail with an error
 containing the substring; a `warning` file (a bad material value, a texture missing or not
-decoding) must load, with a warning containing it. core/tests/asset_hostile.rs loads every
+decoding) must load, with a warning containing it. game/tests/allocs/hostile.rs loads every
 listed file and checks. Also the valid fixtures of tests/data (skinned.glb, embedded.gltf,
 external/, materials/).
 

@@ -3,7 +3,7 @@
 //! * `assets [--out DIR]`: regenerate the character and props in `assets/` (reproducible).
 //! * `ui-atlas`: regenerate the UI atlas and bitmap font in `assets/ui/`.
 //! * `apk [--release]`: build the signed Android APK.
-//! * `android-test`: dermis-core's tests and the APK's library on Android bionic under qemu.
+//! * `android-test`: the engine's and the game's tests and the APK's library on Android bionic under qemu.
 //! * `device-run`: install the APK on a connected phone, run a soak, collect its report.
 
 mod android_test;

@@ -20,10 +20,10 @@ use std::collections::HashMap;
 use glam::DVec3;
 use wgpu::util::DeviceExt;
 
-use dermis_core::render::{read_buffer, FrameUniform, Gpu};
-use dermis_core::shader::{compose, ShaderDefs};
-use dermis_core::shading::pixel::Pixel;
-use dermis_core::shading::{ModelParams, ShadingModel};
+use dermis_engine::render::{read_buffer, FrameUniform, Gpu};
+use dermis_engine::shader::{compose, ShaderDefs};
+use dermis_engine::shading::pixel::Pixel;
+use dermis_engine::shading::{ModelParams, ShadingModel};
 
 use super::{NdFunction, Precision};
 
@@ -164,7 +164,7 @@ impl<'g> Harness<'g> {
             gpu,
             frame_layout: make("conformance frame", &{
                 let [map, sampler, penumbra] =
-                    dermis_core::render::shadow_map_entries(wgpu::ShaderStages::COMPUTE);
+                    dermis_engine::render::shadow_map_entries(wgpu::ShaderStages::COMPUTE);
                 [
                     uniform(0, wgpu::ShaderStages::COMPUTE),
                     map,
@@ -173,9 +173,9 @@ impl<'g> Harness<'g> {
                 ]
             }),
             no_shadow: (
-                dermis_core::render::no_shadow_map(device, &gpu.queue),
-                dermis_core::render::comparison_sampler(device),
-                dermis_core::render::penumbra_grid_texture(device, 1, "no penumbra map"),
+                dermis_engine::render::no_shadow_map(device, &gpu.queue),
+                dermis_engine::render::comparison_sampler(device),
+                dermis_engine::render::penumbra_grid_texture(device, 1, "no penumbra map"),
             ),
             model_layout: make(
                 "conformance model",

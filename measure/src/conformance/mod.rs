@@ -22,13 +22,13 @@
 
 use glam::DVec3;
 
-use dermis_core::shading::pixel::Pixel;
-use dermis_core::shading::{dipole, fresnel, oss, ward, ModelParams, ShadingModel};
+use dermis_engine::shading::pixel::Pixel;
+use dermis_engine::shading::{dipole, fresnel, oss, ward, ModelParams, ShadingModel};
 
 pub mod harness;
 
 /// Whether the compute harness can check `model`: models that sample a LUT texture are
-/// checked by rendering instead (`tests/subsurface_render.rs`), since texture filtering's
+/// checked by rendering instead (`tests/render/subsurface_render.rs`), since texture filtering's
 /// sub-texel precision is the implementation's choice (Vulkan requires 4 bits), far coarser
 /// than the harness's f32 tolerance.
 pub fn harness_checks(model: ShadingModel) -> bool {

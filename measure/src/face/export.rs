@@ -10,9 +10,10 @@ use std::collections::HashMap;
 use glam::Vec3;
 use serde::{Deserialize, Serialize};
 
-use dermis_core::asset::Model;
-use dermis_core::face::head::{self, Camera, FaceLight};
-use dermis_core::shading::Material;
+use dermis_engine::asset::head;
+use dermis_engine::asset::Model;
+use dermis_engine::scene::face::{self, Camera, FaceLight};
+use dermis_engine::shading::Material;
 
 /// Positions closer than this are one vertex [m].
 pub const WELD_M: f32 = 1e-5 * head::METRES_PER_UNIT;
@@ -261,7 +262,7 @@ impl SceneJson {
                 .map(|l| LightJson {
                     name: l.name().into(),
                     position: l.position().to_array(),
-                    intensity: head::LIGHT_INTENSITY,
+                    intensity: face::LIGHT_INTENSITY,
                 })
                 .collect(),
             medium: MediumJson::from_material(material),
@@ -291,7 +292,7 @@ pub fn write(dir: &std::path::Path, model: &Model, material: &Material) -> Resul
     write(MESH_FILE, &mesh.to_ply())?;
     write(
         "scene.json",
-        SceneJson::new(material, &head::camera())
+        SceneJson::new(material, &face::camera())
             .to_json()
             .as_bytes(),
     )

@@ -8,10 +8,12 @@
 //!   face scenes' camera.
 //! - [`truth_cache`]: the cached truths (`tools/reference/face/`), checked against the scene.
 //! - [`score`]: mean |ln(model/truth)| over the head's blocks where the truth is precise.
+//! - [`render`]: the head drawn through the engine's renderer (linear radiance or an image).
 //! - [`regions`]: where the error sits (eye sockets, nose, lips, ear, neck), per channel.
 
 pub mod export;
 pub mod regions;
+pub mod render;
 pub mod score;
 pub mod truth;
 pub mod truth_cache;

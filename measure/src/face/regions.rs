@@ -7,7 +7,7 @@ use glam::DVec3;
 
 use super::score::{block_means, Reference};
 use super::truth::FaceScene;
-use dermis_core::face::pfm::FloatImage;
+use dermis_engine::render::pfm::FloatImage;
 
 /// A named box on the head [m].
 #[derive(Clone, Copy, Debug)]
@@ -56,7 +56,7 @@ pub fn block_regions(scene: &FaceScene, block: u32) -> Result<Vec<Option<usize>>
     let mesh = scene.closed_mesh()?;
     let cam = &scene.camera;
     let (w, h) = (scene.width, scene.height);
-    let view_proj = dermis_core::camera::look_at(
+    let view_proj = dermis_engine::camera::look_at(
         cam.eye,
         cam.target,
         cam.fov_y_deg.to_radians(),

@@ -10,7 +10,7 @@
 //! |ln(model/truth)|, each capped at [`CAP`] (a black image scores the cap, a doubled one
 //! ln 2).
 
-use dermis_core::face::pfm::FloatImage;
+use dermis_engine::render::pfm::FloatImage;
 
 /// Pixels per side of a scored block.
 pub const BLOCK: u32 = 4;

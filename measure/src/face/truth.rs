@@ -4,7 +4,7 @@
 //!
 //! **Scene.** The welded head ([`WeldedMesh`], closed) in metres, walked in millimetres (σ in
 //! mm⁻¹: the material's, one grey medium per channel as the probes walk them); a white point
-//! light of `intensity` W/sr, no ambient; the face scenes' camera ([`head::camera`]) and
+//! light of `intensity` W/sr, no ambient; the face scenes' camera ([`face::camera`]) and
 //! image size. The boundary is the triangles themselves (geometric normals) with a smooth
 //! Fresnel dielectric; the specular reflection at entry is excluded (as the probes exclude
 //! it, and the shading models render subsurface light only); light that leaves and meets the
@@ -33,9 +33,10 @@ use crate::mc::mesh::{ClosedMesh, DistanceField};
 use crate::mc::mesh_walk::{EntryRoulette, Exit, MeshTally, MeshWalker};
 use crate::mc::rng::Rng;
 use crate::mc::{Medium, BATCH_SIZE};
-use dermis_core::face::head::{self, Camera};
-use dermis_core::face::pfm::FloatImage;
-use dermis_core::shading::{fresnel, material::SKIN1, subsurface, Material};
+use dermis_engine::asset::head;
+use dermis_engine::render::pfm::FloatImage;
+use dermis_engine::scene::face::{self, Camera};
+use dermis_engine::shading::{fresnel, material::SKIN1, subsurface, Material};
 
 /// What the truth computes, in words: part of every cache's hash, so a change of method
 /// invalidates the cache as a change of scene does.
@@ -60,7 +61,7 @@ pub const ROULETTE_SURVIVAL: f64 = 0.05;
 
 /// FNV-1a, 64 bits: the scene hash the cache records (no hashing dependency); the engine's
 /// (the texture encodings' source hash).
-pub use dermis_core::asset::compressed::fnv1a64;
+pub use dermis_engine::asset::compressed::fnv1a64;
 
 /// The face scene the truth is computed for: the head, its material, the camera and image size.
 #[derive(Clone, Debug)]
@@ -92,7 +93,7 @@ impl FaceScene {
         Ok(Self {
             mesh,
             material: SKIN1,
-            camera: head::camera(),
+            camera: face::camera(),
             width: REFERENCE_PIXELS,
             height: REFERENCE_PIXELS,
         })
@@ -154,7 +155,7 @@ struct Projector {
 
 impl Projector {
     fn new(camera: &Camera, width: u32, height: u32) -> Self {
-        let view_proj = dermis_core::camera::look_at(
+        let view_proj = dermis_engine::camera::look_at(
             camera.eye,
             camera.target,
             camera.fov_y_deg.to_radians(),

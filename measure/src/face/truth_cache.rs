@@ -17,8 +17,9 @@ use serde::{Deserialize, Serialize};
 
 use super::score::{Reference, BLOCK};
 use super::truth::{FaceScene, LightRecord, Truth, METHOD};
-use dermis_core::face::head;
-use dermis_core::face::pfm::FloatImage;
+use dermis_engine::asset::head;
+use dermis_engine::render::pfm::FloatImage;
+use dermis_engine::scene::face;
 
 /// The cache's index file.
 pub const INDEX: &str = "truth.json";
@@ -123,22 +124,22 @@ pub fn load(
 }
 
 /// The three named lights of the face scenes from the cache at `dir`, in
-/// [`head::FaceLight::ALL`] order.
+/// [`face::FaceLight::ALL`] order.
 pub fn load_named(
     dir: &Path,
     scene: &FaceScene,
-) -> Result<Vec<(head::FaceLight, CachedTruth)>, String> {
-    head::FaceLight::ALL
+) -> Result<Vec<(face::FaceLight, CachedTruth)>, String> {
+    face::FaceLight::ALL
         .iter()
-        .map(|l| load(dir, scene, l.name(), l.position(), head::LIGHT_INTENSITY).map(|t| (*l, t)))
+        .map(|l| load(dir, scene, l.name(), l.position(), face::LIGHT_INTENSITY).map(|t| (*l, t)))
         .collect()
 }
 
-/// Every light cached at `dir` (the named ones first, in [`head::FaceLight::ALL`] order, then
+/// Every light cached at `dir` (the named ones first, in [`face::FaceLight::ALL`] order, then
 /// the others by name), each checked against `scene` at its recorded position and intensity.
 pub fn load_all(dir: &Path, scene: &FaceScene) -> Result<Vec<(Vec3, CachedTruth)>, String> {
     let index = read_index(dir)?;
-    let named: Vec<&str> = head::FaceLight::ALL.iter().map(|l| l.name()).collect();
+    let named: Vec<&str> = face::FaceLight::ALL.iter().map(|l| l.name()).collect();
     let mut names: Vec<&String> = index.lights.keys().collect();
     names.sort_by_key(|n| (named.iter().position(|m| m == n).unwrap_or(named.len()), *n));
     names

@@ -29,8 +29,8 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 
 use crate::mc::{self, Medium};
-use dermis_core::shading::albedo;
-use dermis_core::shading::material::{Material, SKIN1, WHITE_COAT};
+use dermis_engine::shading::albedo;
+use dermis_engine::shading::material::{Material, SKIN1, WHITE_COAT};
 
 /// Relative index of refraction of the acceptance case.
 pub const ETA: f64 = 1.4;
@@ -218,7 +218,7 @@ pub fn acceptance_materials() -> [Material; 2] {
 pub fn test_materials() -> [Material; 3] {
     let skin_mfp = [1.0 / 0.772, 1.0 / 1.05, 1.0 / 1.49];
     let marble_mfp = [1.0 / 2.19, 1.0 / 2.62, 1.0 / 3.00];
-    let c = dermis_core::shading::subsurface::exit_normalisation(ETA);
+    let c = dermis_engine::shading::subsurface::exit_normalisation(ETA);
     let a = |i: usize| TEST_ALBEDO_ENTERED[i].map(|x| x * c);
     [
         albedo::material("skin-dark", a(0), skin_mfp, ETA, 0.0),

@@ -132,12 +132,12 @@ fn regenerated_entry_agrees_with_the_committed_one() {
 fn test_materials_have_the_albedo_they_were_made_from() {
     // Made through the measured inversion: their multi-scatter albedo is what they name, and
     // they are not a preset's optics.
-    let c = dermis_core::shading::subsurface::exit_normalisation(ETA);
+    let c = dermis_engine::shading::subsurface::exit_normalisation(ETA);
     for (m, a) in test_materials().iter().zip(TEST_ALBEDO_ENTERED) {
         let a = a.map(|x| x * c);
         let back = m
             .albedo()
-            .map(|s| dermis_core::shading::albedo::multi_scatter_albedo(s, m.eta, m.g));
+            .map(|s| dermis_engine::shading::albedo::multi_scatter_albedo(s, m.eta, m.g));
         for c in 0..3 {
             assert!((back[c] - a[c]).abs() < 1e-9, "{}: {back:?}", m.name);
         }

@@ -1,5 +1,5 @@
 //! The multi-scatter albedo A of a semi-infinite medium at every reduced albedo α' at once
-//! ("white" Monte Carlo): the table `dermis_core::shading::albedo` inverts.
+//! ("white" Monte Carlo): the table `dermis_engine::shading::albedo` inverts.
 //!
 //! **What A is.** The total diffuse reflectance of the semi-infinite medium (g = 0, σ'_s the
 //! reduced coefficient) under uniform, cosine-weighted incident light, behind a smooth
@@ -156,7 +156,7 @@ mod tests {
     use super::*;
     use crate::mc::chandrasekhar::plane_albedo;
     use crate::mc::{total_reflectance_diffuse, Medium};
-    use dermis_core::shading::subsurface::exit_normalisation;
+    use dermis_engine::shading::subsurface::exit_normalisation;
 
     #[test]
     fn index_matched_curve_is_chandrasekhars_spherical_albedo() {

@@ -4,7 +4,7 @@
 //! Monte Carlo in the limit where the answer is known exactly.
 #![allow(dead_code)]
 
-pub use dermis_core::shading::transport::gauss_legendre01;
+pub use dermis_engine::shading::transport::gauss_legendre01;
 
 /// Chandrasekhar's H(μ) for isotropic scattering with single-scattering albedo ω ∈ (0, 1],
 /// from H(μ) = 1 + (ω/2) μ H(μ) ∫₀¹ H(μ')/(μ + μ') dμ' (Nyström with 32 Gauss–Legendre

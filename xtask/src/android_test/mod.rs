@@ -1,6 +1,6 @@
 //! `cargo xtask android-test`: the native code on real Android bionic, without a phone.
 //!
-//! 1. Builds dermis-core's tests (its unit tests and `core/tests/*`, every test that needs no
+//! 1. Builds the engine's and the game's tests (their unit tests and `engine/tests/`, `game/tests/`: every test that needs no
 //!    GPU or window) for `aarch64-linux-android` with the APK's toolchain and link flags
 //!    ([`apk::toolchain`]: the generated sysroot, Debian's clang/lld and arm64 libunwind, or
 //!    the NDK), in the profile `android-test` (release without LTO, with debug assertions and
@@ -27,14 +27,15 @@ use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
 const PROFILE: &str = "android-test";
-const PACKAGE: &str = "dermis-core";
+/// The platform-free crates whose tests run on bionic.
+const PACKAGES: [&str; 2] = ["dermis-engine", "dermis-game"];
 const DLOPEN_CHECK: &str = include_str!("dlopen_check.c");
 
 const USAGE: &str = "\
 usage: cargo xtask android-test [--build-only] [--no-so] [--apk FILE | --so FILE]
                                 [--jobs N] [--timeout SECS] [--no-ndk]
 
-Builds dermis-core's unit and integration tests for aarch64-linux-android with the APK's
+Builds dermis-engine's and dermis-game's unit and integration tests for aarch64-linux-android with the APK's
 toolchain (profile android-test: release, no LTO), runs each test binary under
 qemu-aarch64-static on the bionic userland, and checks the APK's native library
 (symbol-version-aware imports against the real system libraries, dlopen(RTLD_NOW)).
@@ -242,16 +243,11 @@ struct TestBinary {
 /// The cargo command building (or describing) the tests for Android.
 fn cargo_tests(root: &Path, tc: &Toolchain) -> Command {
     let mut cmd = apk::cargo();
-    cmd.current_dir(root).args([
-        "test",
-        "-p",
-        PACKAGE,
-        "--target",
-        apk::TARGET,
-        "--profile",
-        PROFILE,
-        "--locked",
-    ]);
+    cmd.current_dir(root).arg("test");
+    for package in PACKAGES {
+        cmd.args(["-p", package]);
+    }
+    cmd.args(["--target", apk::TARGET, "--profile", PROFILE, "--locked"]);
     // A profile of this command only (the workspace's Cargo.toml is left alone): optimised
     // like release, the desktop tests' checks. No LTO: on 2 cores the build takes ~5 min from
     // scratch, against ~11 with thin LTO (each test binary is an LTO link of wgpu and naga).

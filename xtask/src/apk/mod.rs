@@ -96,7 +96,7 @@ pub fn run(args: &[String]) -> Result<(), String> {
 /// The profile settings of an APK release build (environment overrides of
 /// `[profile.release]`, so the workspace's desktop release profile is left alone), chosen
 /// for size (issue 11, APK ≤ 6 MB): with opt-level "s", one codegen unit (and no JPEG
-/// decoder, `dermis-core` without default features) the stripped library went from 6.8 MB
+/// decoder, `dermis-engine` without default features) the stripped library went from 6.8 MB
 /// (thin LTO, opt-level 3) to 5.0 MB with thin LTO and 4.5 MB with fat LTO; panic = "abort"
 /// drops the landing pads (the unwind tables stay: the panic hook logs a backtrace).
 fn release_profile_env(cmd: &mut Command, fat_lto: bool) {

@@ -65,14 +65,14 @@ pub fn generate() -> Vec<(String, Vec<u8>, String)> {
     // as the engine measures it, on the file the engine loads.
     let first = export::character_glb(&character, &clips, &png, [1.0; 3]);
     let no_files = |uri: &str| -> Result<Vec<u8>, String> { Err(format!("no file {uri}")) };
-    let model = dermis_core::asset::load_gltf_slice(&first, "character.glb", &no_files)
+    let model = dermis_engine::asset::load_gltf_slice(&first, "character.glb", &no_files)
         .expect("the generated character loads");
     let skin = Mat::ALL.iter().position(|&m| m == Mat::Skin).unwrap_or(0);
     let texture = model.materials[skin]
         .volume_scatter
         .and_then(|s| s.multiscatter_texture)
         .expect("the skin's multi-scatter texture");
-    let mean = dermis_core::asset::skin::texture_mean(&model, skin, texture)
+    let mean = dermis_engine::asset::skin::texture_mean(&model, skin, texture)
         .expect("the atlas is in the file");
     let factor = outfit::skin_factor(mean);
     let summary = format!(

@@ -6,8 +6,8 @@ use super::texture::atlas;
 use glam::Vec3;
 use serde_json::{json, Value};
 
-use dermis_core::shading::material::SKIN1;
-use dermis_core::shading::volume_optics::VolumeOptics;
+use dermis_engine::shading::material::SKIN1;
+use dermis_engine::shading::volume_optics::VolumeOptics;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
 pub enum Mat {

@@ -1,6 +1,6 @@
 //! The GPU block encodings of every texture the project ships (part of `cargo xtask assets`):
 //! every image a glTF file's materials reference — the character's, each prop's — in each
-//! role the engine's loader reads it in (`dermis_core::asset`: colour, sRGB, or data, linear;
+//! role the engine's loader reads it in (`dermis_engine::asset`: colour, sRGB, or data, linear;
 //! the file is loaded by the engine to know which), and the scanned head's maps in theirs
 //! (`face::head::MAPS`): the full mip chain the renderer builds (`dermis_texture::mip_chain`)
 //! encoded as BC (BC1, or BC3 where the image has alpha: desktop GPUs) and ETC2 (RGB8 / RGBA8:
@@ -11,7 +11,7 @@ pub mod etc2;
 
 use std::path::Path;
 
-use dermis_core::asset::load_gltf_slice;
+use dermis_engine::asset::load_gltf_slice;
 use dermis_texture::{
     fnv1a64, level_size, mip_chain, sidecar_path, BlockFormat, BlockImage, Family, TextureRole,
 };
@@ -98,8 +98,8 @@ pub fn sources(assets: &Path, head_assets: &Path) -> Result<Vec<Source>, String>
             });
         }
     }
-    for (name, role) in dermis_core::face::head::MAPS {
-        let file = format!("{}/{name}", dermis_core::face::head::DIR);
+    for (name, role) in dermis_engine::asset::head::MAPS {
+        let file = format!("{}/{name}", dermis_engine::asset::head::DIR);
         out.push(Source {
             bytes: read(head_assets, &file)?,
             file,
