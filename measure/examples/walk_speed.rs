@@ -15,7 +15,7 @@
 use std::path::Path;
 use std::time::Instant;
 
-use dermis_core::face::head::{self, FaceLight};
+use dermis_engine::scene::face::{self, FaceLight};
 use glam::DVec3;
 
 use dermis_measure::face::truth::{
@@ -165,7 +165,7 @@ fn main() {
     // The face truth's side light [mm] and its entry roulette, by distance from what the face
     // camera sees (a 128 × 128 fan of rays from its eye over the head's bounding sphere).
     let side = FaceLight::Side.position().as_dvec3() * 1000.0;
-    let cam = head::camera();
+    let cam = face::camera();
     let eye = cam.eye.as_dvec3() * 1000.0;
     let axis = (head.centre - eye).normalize();
     let (u, v) = axis.any_orthonormal_pair();
