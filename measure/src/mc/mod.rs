@@ -67,9 +67,9 @@
 //! tallies (`walk::Scoring`). The scenes: `flat.rs` (the semi-infinite medium and the slab,
 //! with [`Source`]'s sources and the radial, cone and shadow-edge detectors), `sphere.rs` (the
 //! sphere under a beam, polar-angle bands), `mesh_walk.rs` (a closed triangle mesh, `mesh.rs`,
-//! under a point light: BVH queries skipped within the safe distance, overlapping sheets'
-//! layers, re-entry, the entry roulette; exits handed to the caller — the face truth projects
-//! them into its camera) and `pigment.rs` (the flat medium under an albedo map, its albedo
+//! under a point light: BVH queries skipped within the safe distance of `mesh_grid.rs`,
+//! overlapping sheets' layers, re-entry, the entry roulette; exits handed to the caller — the
+//! face truth projects them into its camera) and `pigment.rs` (the flat medium under an albedo map, its albedo
 //! varying over the surface). The white walk of `albedo.rs` is another algorithm (no
 //! absorption, depth only, a length roulette) and has its own loop. `golden_tests.rs` pins
 //! every entry point's results bit for bit.
