@@ -208,6 +208,7 @@ pub const DIPOLE: Descriptor = Descriptor {
     probe: |p, _, x| profile_packed(p, false, x),
     probe_wgsl: "dipole_profile(x)",
     total_reflectance: |m, _| total_reflectance(m),
+    consts: &[],
 };
 
 /// `dipole-printed`: eq. 3 as printed.

@@ -241,6 +241,7 @@ pub const OSS: Descriptor = Descriptor {
     probe: |p, _, x| colour_packed(p, false, x),
     probe_wgsl: "oss_colour(x)",
     total_reflectance: |m, slab| super::prediction::oss(m, slab, false),
+    consts: &[],
 };
 
 /// `oss-stable`: eq. 5's terms positive and bounded.

@@ -272,6 +272,7 @@ pub const WARD: Descriptor = Descriptor {
     probe: |p, px, _| probe(p, false, px),
     probe_wgsl: PROBE_WGSL,
     total_reflectance: |m, _| dipole::total_reflectance(m),
+    consts: &[],
 };
 
 /// `ward-printed`: eq. 1 as printed.
