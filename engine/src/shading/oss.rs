@@ -28,7 +28,7 @@ use super::{fresnel, units, ward, Descriptor, Effects, Material};
 use glam::DVec3;
 
 model_uniform! {
-    /// What `oss.wgsl` reads (its `OssUniform`, member for member).
+    /// What `oss.wgsl` reads (`#import OssUniform`, generated from this declaration).
     pub struct OssUniform {
         /// f_d = c0 + c1 d + c2 d² + c3 d³ per channel (printed form).
         pub c0: [f32; 3],

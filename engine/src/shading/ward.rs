@@ -52,7 +52,7 @@ impl Sliders {
 }
 
 model_uniform! {
-    /// What `ward.wgsl` reads (its `WardUniform`, member for member).
+    /// What `ward.wgsl` reads (`#import WardUniform`, generated from this declaration).
     pub struct WardUniform {
         /// R_d(α') (the diffuse colour before the texture).
         pub rho_d: [f32; 3],
