@@ -55,7 +55,7 @@ pub enum BenchKind {
     /// decoded on the CPU, the PNG/JPEG sources decoded): CPU time and GPU bytes of each.
     Textures(crate::cmd::bench_textures::TexturesArgs),
     /// The accuracy-vs-time table: errors against Monte Carlo, GPU cost, shader size.
-    Shading(crate::cmd::bench_shading::ShadingArgs),
+    Shading(Box<crate::cmd::bench_shading::ShadingArgs>),
     /// GPU and CPU time saved by effect scheduling (tier by coverage and light), on/off ratios.
     Effects(crate::cmd::bench_effects::EffectsArgs),
     /// Every model on the scanned head against its cached Monte Carlo truth (`dermis reference --scene head`).
@@ -76,7 +76,7 @@ pub fn run(args: BenchArgs) -> Result<(), String> {
             (first_frame_only, cache) => frame(rounds, frames, out, json, first_frame_only, cache),
         },
         BenchKind::Textures(args) => crate::cmd::bench_textures::run(args),
-        BenchKind::Shading(args) => crate::cmd::bench_shading::run(args),
+        BenchKind::Shading(args) => crate::cmd::bench_shading::run(*args),
         BenchKind::Effects(args) => crate::cmd::bench_effects::run(args),
         BenchKind::Face(args) => crate::cmd::bench_face::run(args),
     }

@@ -33,6 +33,12 @@ pub struct FaceArgs {
     /// share of the error.
     #[arg(long)]
     pub no_normal_map: bool,
+    /// Every light cached in this folder and its sub-folders (one `dermis reference --scene
+    /// head --light X,Y,Z --out DIR/NAME` each): the sweep's table (strict and wide score per
+    /// model and light against the goal for the light's direction) and a contact sheet per
+    /// spatial model (`sweep.md`, `sweep.json`, `sweep-<model>.png`).
+    #[arg(long, conflicts_with = "cache")]
+    pub sweep: Option<PathBuf>,
 }
 
 /// The default cache directory.
@@ -72,7 +78,7 @@ pub fn flip_mean(
 
 /// The exposure the pairs are tone-mapped at: the front reference's mean over the head to
 /// 0.35 (mid-grey after the curve).
-fn exposure(front: &Reference, alpha: &[f32]) -> f32 {
+pub fn exposure(front: &Reference, alpha: &[f32]) -> f32 {
     let (mut sum, mut n) = (0.0f64, 0usize);
     for (p, a) in front.full.pixels.iter().zip(alpha) {
         if *a >= 0.999 {
@@ -129,6 +135,9 @@ pub fn face_scores(gpu: &Gpu) -> Result<Vec<FaceScore>, String> {
 
 pub fn run(args: FaceArgs) -> Result<(), String> {
     check_out_dir(&args.out)?;
+    if let Some(dir) = &args.sweep {
+        return crate::cmd::bench_face_sweep::run(&args, dir);
+    }
     let dir = args.cache.unwrap_or_else(default_cache);
     let scene = FaceScene::head(&crate::paths::assets_dir())?;
     let truths = truth_cache::load_all(&dir, &scene)?;

@@ -14,7 +14,8 @@
 
 use std::path::PathBuf;
 
-use crate::cmd::args::{check_out_dir, parse_rounds};
+use crate::cmd::args::{check_out_dir, parse_reference_photons, parse_rounds};
+use crate::cmd::material_args::MaterialArgs;
 use crate::cmd::progress::Progress;
 use dermis_engine::anim::Pose;
 use dermis_engine::asset::shapes::plane_model;
@@ -44,6 +45,19 @@ pub struct ShadingArgs {
     /// (default: docs/results/mali-cycles.json; the columns stay empty if that is missing).
     #[arg(long)]
     pub mali: Option<PathBuf>,
+    /// One material instead of the presets and the test materials: a name, coefficients,
+    /// albedo and mean free path, or a file's skin material (then no governor-front.txt).
+    #[command(flatten)]
+    pub medium: MaterialArgs,
+    /// The reference set of that material (`dermis reference … --out DIR` writes it); without
+    /// it a named material's is read from tools/reference/ and any other is computed first by
+    /// the Monte Carlo (minutes) and written to the output directory.
+    #[arg(long)]
+    pub reference: Option<PathBuf>,
+    /// Photons per channel and scene of a reference computed first, 1000..=1e9 (default: as
+    /// `dermis reference`).
+    #[arg(long, value_parser = parse_reference_photons, allow_hyphen_values = true)]
+    pub photons: Option<u64>,
 }
 
 /// Target of the cost scene.
@@ -53,19 +67,75 @@ pub const COST_VIEW_MM: f64 = 256.0;
 /// Mali GPUs reported.
 pub const GPUS: [&str; 2] = ["G52", "G57"];
 
-/// The acceptance materials with their reference sets.
+/// The scored materials with their reference sets.
 type References = Vec<(Material, ReferenceSet)>;
 
+/// What is scored: the materials of the main columns, and those scored beside them.
+struct Scored {
+    primary: Vec<Material>,
+    beside: Vec<Material>,
+}
+
+impl Scored {
+    /// The presets in the main columns and the test materials beside them (the governor's
+    /// front), or one material of the user's.
+    fn of(args: &ShadingArgs) -> Result<Self, String> {
+        let m = &args.medium;
+        if !(m.is_custom() || m.material.is_some() || m.eta.is_some() || m.g.is_some()) {
+            return Ok(Self {
+                primary: ground_truth::acceptance_materials().to_vec(),
+                beside: ground_truth::test_materials().to_vec(),
+            });
+        }
+        Ok(Self {
+            primary: vec![m.resolve("skin1", crate::cmd::reference::named)?],
+            beside: Vec::new(),
+        })
+    }
+
+    fn single(&self) -> bool {
+        self.beside.is_empty()
+    }
+}
+
+/// `material`'s reference set: `--reference`, else the committed one of a named material
+/// with the same optics, else none (computed once the checks are done).
+fn find_reference(args: &ShadingArgs, m: &Material) -> Result<Option<ReferenceSet>, String> {
+    let path = match &args.reference {
+        Some(p) => p.clone(),
+        None => ground_truth::file_for(&ground_truth::default_dir(), &m.name),
+    };
+    if args.reference.is_none() && !path.is_file() {
+        return Ok(None);
+    }
+    let set = ReferenceSet::load(&path)?;
+    let same = |a: f64, b: f64| (a - b).abs() <= 1e-9 * a.abs().max(b.abs()).max(1e-12);
+    let matches = (0..3).all(|c| {
+        same(set.sigma_a[c], m.sigma_a[c]) && same(set.sigma_s_prime[c], m.sigma_s_prime[c])
+    }) && same(set.eta, m.eta)
+        && same(set.g, m.g);
+    match (matches, args.reference.is_some()) {
+        (true, _) => Ok(Some(set)),
+        (false, true) => Err(format!(
+            "{}: the reference is of σ_a {:?}, σ'_s {:?}, η {}, g {}, not of the material asked for",
+            path.display(),
+            set.sigma_a,
+            set.sigma_s_prime,
+            set.eta,
+            set.g
+        )),
+        (false, false) => Ok(None),
+    }
+}
+
 /// The checks that need no GPU: output directory, reference files, Mali file (`--rounds`
-/// is range-checked by its parser).
-fn prepare(args: &ShadingArgs) -> Result<(References, Option<Value>), String> {
+/// is range-checked by its parser); then the references no file holds, computed.
+fn prepare(args: &ShadingArgs, scored: &Scored) -> Result<(References, Option<Value>), String> {
     check_out_dir(&args.out)?;
-    let dir = ground_truth::default_dir();
-    let sets = ground_truth::acceptance_materials()
-        .into_iter()
-        .chain(ground_truth::test_materials())
-        .map(|m| ReferenceSet::load(&ground_truth::file_for(&dir, &m.name)).map(|s| (m, s)))
-        .collect::<Result<Vec<_>, _>>()?;
+    let mut found = Vec::new();
+    for m in scored.primary.iter().chain(&scored.beside) {
+        found.push((m.clone(), find_reference(args, m)?));
+    }
     let mali = match &args.mali {
         Some(path) => Some(read_cycles(path)?),
         None => {
@@ -81,11 +151,39 @@ fn prepare(args: &ShadingArgs) -> Result<(References, Option<Value>), String> {
                 .transpose()?
         }
     };
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let mut sets = Vec::new();
+    for (m, set) in found {
+        let set = match set {
+            Some(set) => set,
+            None => {
+                let photons = args
+                    .photons
+                    .unwrap_or_else(|| crate::cmd::reference::default_photons(&m));
+                let scenes = ground_truth::standard_scenes(&m);
+                let mut progress = Progress::new(&format!("reference {}", m.name), 1);
+                let set = ReferenceSet::generate(&m, &scenes, photons, 1, threads, |d, t| {
+                    progress.set(d as u64, t as u64, "simulations")
+                });
+                progress.finish();
+                let path = args.out.join(format!("reference-{}.json", m.name));
+                set.save(&path)?;
+                eprintln!(
+                    "bench shading: the reference of {} written to {}",
+                    m.name,
+                    path.display()
+                );
+                set
+            }
+        };
+        sets.push((m, set));
+    }
     Ok((sets, mali))
 }
 
 pub fn run(args: ShadingArgs) -> Result<(), String> {
-    let (sets, mali) = prepare(&args)?;
+    let scored = Scored::of(&args)?;
+    let (sets, mali) = prepare(&args, &scored)?;
     let models = ShadingModel::ALL;
     let scenes: usize = sets.iter().map(|(_, s)| s.entries.len()).sum();
     let mut progress = Progress::new(
@@ -140,7 +238,15 @@ pub fn run(args: ShadingArgs) -> Result<(), String> {
     }
     progress.finish();
 
-    let report = build_report(&gpu, &args, &sets, &scores, &times, coverage, mali.as_ref());
+    let report = build_report(
+        &gpu,
+        &args,
+        (&scored, &sets),
+        &scores,
+        &times,
+        coverage,
+        mali.as_ref(),
+    );
     let json_path = args.out.join("shading.json");
     let text = serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?;
     std::fs::write(&json_path, text).map_err(|e| format!("{}: {e}", json_path.display()))?;
@@ -149,17 +255,17 @@ pub fn run(args: ShadingArgs) -> Result<(), String> {
     std::fs::write(&md_path, &md).map_err(|e| format!("{}: {e}", md_path.display()))?;
     let png = args.out.join("pareto.png");
     pareto::chart(&report, &png)?;
-    let front = args.out.join("governor-front.txt");
-    std::fs::write(&front, pareto::front_file(&report))
-        .map_err(|e| format!("{}: {e}", front.display()))?;
+    let mut wrote = vec![json_path, md_path, png];
+    // The governor's tiers come from the game's materials, not from one of the user's.
+    if !scored.single() {
+        let front = args.out.join("governor-front.txt");
+        std::fs::write(&front, pareto::front_file(&report))
+            .map_err(|e| format!("{}: {e}", front.display()))?;
+        wrote.push(front);
+    }
     println!("{md}");
-    println!(
-        "wrote {}, {}, {} and {}",
-        json_path.display(),
-        md_path.display(),
-        png.display(),
-        front.display()
-    );
+    let wrote: Vec<String> = wrote.iter().map(|p| p.display().to_string()).collect();
+    println!("wrote {}", wrote.join(", "));
     Ok(())
 }
 
@@ -269,12 +375,13 @@ impl CostScene {
     }
 }
 
-/// A model's scene scores split into the presets' and each test material's (in order).
-fn split_presets(all: &[SceneScore]) -> (Vec<SceneScore>, Vec<(String, Vec<SceneScore>)>) {
-    let presets: Vec<String> = ground_truth::acceptance_materials()
-        .iter()
-        .map(|m| m.name.to_string())
-        .collect();
+/// A model's scene scores split into the main columns' materials' and each material scored
+/// beside them (in order).
+fn split_presets(
+    all: &[SceneScore],
+    scored: &Scored,
+) -> (Vec<SceneScore>, Vec<(String, Vec<SceneScore>)>) {
+    let presets: Vec<String> = scored.primary.iter().map(|m| m.name.to_string()).collect();
     let copy = |s: &SceneScore| SceneScore {
         material: s.material.clone(),
         scene: s.scene,
@@ -285,7 +392,8 @@ fn split_presets(all: &[SceneScore]) -> (Vec<SceneScore>, Vec<(String, Vec<Scene
         .filter(|s| presets.contains(&s.material))
         .map(copy)
         .collect();
-    let others = ground_truth::test_materials()
+    let others = scored
+        .beside
         .iter()
         .map(|m| {
             let v = all
@@ -316,7 +424,7 @@ fn kernel_rings(model: ShadingModel, material: &Material) -> (usize, usize) {
 fn build_report(
     gpu: &Gpu,
     args: &ShadingArgs,
-    sets: &[(Material, ReferenceSet)],
+    (scored, sets): (&Scored, &[(Material, ReferenceSet)]),
     scores: &[Vec<SceneScore>],
     times: &[Vec<f64>],
     coverage: f64,
@@ -368,7 +476,7 @@ fn build_report(
         });
         if let Some(all) = model.map(|_| &scores[i]) {
             // The presets' columns; each test material's overall beside them.
-            let (s, others) = split_presets(all);
+            let (s, others) = split_presets(all, scored);
             let s = &s;
             let mut per_material = Map::new();
             for (name, scores) in &others {
@@ -425,13 +533,14 @@ fn build_report(
             .map(|(a, b)| a / b);
         row["mali"]["G57_ratio_to_ward"] = json!(r);
     }
-    let presets: Vec<String> = ground_truth::acceptance_materials()
-        .iter()
-        .map(|m| m.name.to_string())
-        .collect();
+    let presets: Vec<String> = scored.primary.iter().map(|m| m.name.to_string()).collect();
     json!({
         "presets": presets,
-        "test_materials": ground_truth::test_materials().iter().map(|m| json!({
+        "primary_materials": scored.primary.iter().map(|m| json!({
+            "material": m.name, "sigma_a": m.sigma_a, "sigma_s_prime": m.sigma_s_prime,
+            "eta": m.eta, "g": m.g,
+        })).collect::<Vec<_>>(),
+        "test_materials": scored.beside.iter().map(|m| json!({
             "material": m.name, "sigma_a": m.sigma_a, "sigma_s_prime": m.sigma_s_prime,
             "multi_scatter_albedo": m.albedo().map(|a| dermis_engine::shading::albedo::multi_scatter_albedo(a, m.eta, m.g)),
         })).collect::<Vec<_>>(),

@@ -11,8 +11,9 @@ use dermis_measure::ground_truth::{self, Scene};
 use dermis_measure::scenes::SceneRenderer;
 use serde_json::{json, Map, Value};
 
-use crate::cmd::args::{parse_edge_mm, parse_eta, parse_g, parse_light_height_mm, MAX_RADIUS_MM};
-use crate::cmd::args::{parse_material, parse_model};
+use crate::cmd::args::MAX_RADIUS_MM;
+use crate::cmd::args::{parse_edge_mm, parse_light_height_mm, parse_material, parse_model};
+use crate::cmd::material_args::MaterialArgs;
 use crate::cmd::progress::Progress;
 /// Annuli of the default edges.
 const DEFAULT_BINS: usize = 24;
@@ -25,16 +26,10 @@ pub struct ProfileArgs {
     /// Every shading model (the default when --shading is not given).
     #[arg(long)]
     pub all: bool,
-    /// Material preset (skin1 | white-coat).
-    #[arg(long, default_value = "skin1", value_parser = parse_material)]
-    pub material: Material,
-    /// Relative index of refraction, 1..=3 (default: the preset's; another than a shipped
-    /// material's makes the spatial models measure their tables first, ~100 s).
-    #[arg(long, value_parser = parse_eta, allow_hyphen_values = true)]
-    pub eta: Option<f64>,
-    /// Henyey–Greenstein anisotropy g, -0.99..=0.99 (not 0: the tables are measured first).
-    #[arg(long, default_value_t = 0.0, value_parser = parse_g, allow_hyphen_values = true)]
-    pub g: f64,
+    /// The medium (default skin1): a name, coefficients, albedo and mean free path, or a
+    /// file's skin material.
+    #[command(flatten)]
+    pub medium: MaterialArgs,
     /// Height of the point light above the surface (mm), 0.01..=1000.
     #[arg(long, value_parser = parse_light_height_mm, allow_hyphen_values = true)]
     pub light_height_mm: f64,
@@ -59,8 +54,7 @@ pub struct Request {
 /// message names what is wrong.
 pub fn validate(args: &ProfileArgs) -> Result<Request, String> {
     let h = args.light_height_mm;
-    let eta = args.eta.unwrap_or(args.material.eta);
-    let g = args.g;
+    let material = args.medium.resolve("skin1", parse_material)?;
     let edges = match &args.edges_mm {
         Some(e) => {
             check_edges(e)?;
@@ -81,11 +75,7 @@ pub fn validate(args: &ProfileArgs) -> Result<Request, String> {
     };
     Ok(Request {
         models,
-        material: Material {
-            eta,
-            g,
-            ..args.material.clone()
-        },
+        material,
         h_mm: h,
         edges,
     })
@@ -206,14 +196,6 @@ pub fn table(req: &Request, profiles: &[Profile]) -> String {
 
 pub fn run(args: ProfileArgs) -> Result<(), String> {
     let req = validate(&args)?;
-    let shipped = req.material == args.material;
-    if !shipped {
-        eprintln!(
-            "profile: η = {}, g = {} is not a shipped material: the spatial models measure their \
-             tables first (up to ~100 s on 2 cores)",
-            req.material.eta, req.material.g
-        );
-    }
     // Steps: the GPU, then one per model.
     let mut progress = Progress::new("profile", 1 + req.models.len() as u64);
     progress.begin("GPU device");

@@ -8,6 +8,7 @@ use std::time::Instant;
 use crate::cmd::args::{
     check_out_dir, parse_reference_photons, parse_seed, parse_threads, parse_vec3,
 };
+use crate::cmd::material_args::MaterialArgs;
 use crate::cmd::progress::Progress;
 use dermis_engine::shading::material::{Material, SKIN1, WHITE_COAT};
 use dermis_measure::ground_truth::{self, ReferenceSet};
@@ -32,9 +33,11 @@ pub struct ReferenceArgs {
     /// tools/reference/README.md; `--scene head`: 8e6 for red, ×1.5 green, ×2.5 blue, per light).
     #[arg(long, value_parser = parse_reference_photons, allow_hyphen_values = true)]
     pub photons: Option<u64>,
-    /// skin1 | white-coat | skin-dark | skin-pale | marble | all.
-    #[arg(long, default_value = "all")]
-    pub material: String,
+    /// The medium (probes): a name — skin1 | white-coat | skin-dark | skin-pale | marble |
+    /// all (the default) —, coefficients, albedo and mean free path, or a file's skin material
+    /// (written as <its name>.json; `custom` for numbers).
+    #[command(flatten)]
+    pub medium: MaterialArgs,
     /// Seed of the Monte Carlo.
     #[arg(long, default_value_t = 1, value_parser = parse_seed, allow_hyphen_values = true)]
     pub seed: u64,
@@ -65,21 +68,29 @@ fn all_materials() -> Vec<Material> {
         .collect()
 }
 
-fn materials(name: &str) -> Result<Vec<Material>, String> {
+/// A material with a reference set by name (not `all`).
+pub fn named(name: &str) -> Result<Material, String> {
     let all = all_materials();
-    if name == "all" {
-        return Ok(all);
-    }
     let known: Vec<&str> = all.iter().map(|m| &*m.name).collect();
-    all.iter()
-        .find(|m| m.name == name)
-        .map(|m| vec![m.clone()])
-        .ok_or_else(|| {
-            format!(
-                "unknown material `{name}` (known: {}, all)",
-                known.join(", ")
-            )
-        })
+    all.iter().find(|m| m.name == name).cloned().ok_or_else(|| {
+        format!(
+            "unknown material `{name}` (known: {}, all)",
+            known.join(", ")
+        )
+    })
+}
+
+/// The materials `medium` asks for: every one with a reference set (`all`, the default),
+/// or the one it names or describes.
+fn materials(medium: &MaterialArgs) -> Result<Vec<Material>, String> {
+    let all = medium.material.as_deref().unwrap_or("all") == "all" && !medium.is_custom();
+    if all && (medium.eta.is_some() || medium.g.is_some()) {
+        return Err("--eta and --g need one material (a name, or a medium's numbers)".into());
+    }
+    match all {
+        true => Ok(all_materials()),
+        false => Ok(vec![medium.resolve("all", named)?]),
+    }
 }
 
 pub fn run(args: ReferenceArgs) -> Result<(), String> {
@@ -89,7 +100,7 @@ pub fn run(args: ReferenceArgs) -> Result<(), String> {
     if args.light.is_some() || args.face_light.is_some() {
         return Err("--light and --face-light need --scene head".into());
     }
-    let mats = materials(&args.material)?;
+    let mats = materials(&args.medium)?;
     let threads = args
         .threads
         .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));

@@ -35,12 +35,22 @@ fn lights(args: &ReferenceArgs) -> Result<Vec<(String, glam::Vec3)>, String> {
 }
 
 pub fn run(args: &ReferenceArgs) -> Result<(), String> {
-    if !matches!(args.material.as_str(), "all" | "skin1") {
-        return Err("--scene head: the face scenes' material is skin1".into());
-    }
+    // The face scenes' medium is skin1 (what `bench face` scores); any other is a truth of
+    // its own (its cache refuses the face scenes' material, and theirs refuses it).
+    let medium = match args.medium.material.as_deref() {
+        Some("all") if !args.medium.is_custom() => crate::cmd::material_args::MaterialArgs {
+            material: None,
+            ..args.medium.clone()
+        },
+        _ => args.medium.clone(),
+    };
+    let material = medium.resolve("skin1", crate::cmd::args::parse_material)?;
     let lights = lights(args)?;
     check_out_dir(&args.out)?;
-    let scene = FaceScene::head(&crate::paths::assets_dir())?;
+    let scene = FaceScene {
+        material,
+        ..FaceScene::head(&crate::paths::assets_dir())?
+    };
     // The light must be outside the head: checked for every light before any photon runs.
     let mesh = scene.closed_mesh()?;
     for (name, p) in &lights {

@@ -4,21 +4,16 @@ use dermis_engine::shading::{prediction, Material, ShadingModel};
 use dermis_measure::mc::{self, Medium};
 use serde_json::{json, Map, Value};
 
-use crate::cmd::args::parse_material;
-use crate::cmd::args::{parse_eta, parse_g, parse_seed, parse_sss_photons};
+use crate::cmd::args::{parse_material, parse_seed, parse_sss_photons};
+use crate::cmd::material_args::MaterialArgs;
 use crate::cmd::progress::Progress;
 
 #[derive(clap::Args, Debug)]
 pub struct SssArgs {
-    /// Material preset (skin1 | white-coat).
-    #[arg(long, default_value = "skin1", value_parser = parse_material)]
-    pub material: Material,
-    /// Relative index of refraction, 1..=3 (default: the preset's).
-    #[arg(long, value_parser = parse_eta, allow_hyphen_values = true)]
-    pub eta: Option<f64>,
-    /// Henyey–Greenstein anisotropy g, -0.99..=0.99 (σ_s = σ'_s/(1−g) in the Monte Carlo).
-    #[arg(long, default_value_t = 0.0, value_parser = parse_g, allow_hyphen_values = true)]
-    pub g: f64,
+    /// The medium (default skin1): a name, coefficients, albedo and mean free path, or a
+    /// file's skin material (the Monte Carlo walks σ_s = σ'_s/(1−g) with the real phase).
+    #[command(flatten)]
+    pub medium: MaterialArgs,
     /// Photons per channel and geometry, 1000..=1e8.
     #[arg(long, default_value_t = 100_000, value_parser = parse_sss_photons, allow_hyphen_values = true)]
     pub photons: u64,
@@ -91,12 +86,7 @@ fn rel(model: [f64; 3], reference: [f64; 3]) -> [f64; 3] {
 }
 
 pub fn run(args: SssArgs) -> Result<(), String> {
-    let eta = args.eta.unwrap_or(args.material.eta);
-    let material = Material {
-        eta,
-        g: args.g,
-        ..args.material.clone()
-    };
+    let material = args.medium.resolve("skin1", parse_material)?;
     // Steps: the Monte Carlo runs, then the models' predictions (the spatial models measure
     // their tables for a material met for the first time).
     let mut progress = Progress::new("sss", (RUNS + 1) as u64);
@@ -133,9 +123,11 @@ pub fn run(args: SssArgs) -> Result<(), String> {
         );
     }
     let report = json!({
-        "material": args.material.name,
-        "eta": eta,
-        "g": args.g,
+        "material": material.name,
+        "sigma_a": material.sigma_a,
+        "sigma_s_prime": material.sigma_s_prime,
+        "eta": material.eta,
+        "g": material.g,
         "photons": args.photons,
         "convention": "diffuse reflectance per unit power entering the medium (Jensen's R_d), normal incidence, specular excluded",
         "reference": {
@@ -150,8 +142,14 @@ pub fn run(args: SssArgs) -> Result<(), String> {
         return crate::cmd::stats::print_json(&report);
     }
     println!(
-        "{} η={eta} g={} — total diffuse reflectance (R, G, B), relative error vs Monte Carlo ({} photons)",
-        args.material.name, args.g, args.photons
+        "{} (σ_a {:?}, σ'_s {:?} mm⁻¹) η={} g={} — total diffuse reflectance (R, G, B), \
+         relative error vs Monte Carlo ({} photons)",
+        material.name,
+        material.sigma_a,
+        material.sigma_s_prime,
+        material.eta,
+        material.g,
+        args.photons
     );
     let (r, se) = reference.semi_infinite;
     let max_se = |se: &[f64; 3]| se[0].max(se[1]).max(se[2]);

@@ -127,10 +127,11 @@ fn one_line_error(args: &[String], needles: &[&str]) -> String {
 /// The bad values of a numeric kind, each written the way the flag takes it.
 fn bad_values(kind: Kind) -> Vec<String> {
     let (template, negative) = match kind {
-        Kind::Count | Kind::Size | Kind::NumberList => (
+        Kind::Count | Kind::Size | Kind::NumberList | Kind::Rgb => (
             match kind {
                 Kind::Size => "{}x10",
                 Kind::NumberList => "1,{}",
+                Kind::Rgb => "{},1,1",
                 _ => "{}",
             },
             "-1",

@@ -24,6 +24,8 @@ pub enum Kind {
     },
     /// Comma-separated numbers (none negative).
     NumberList,
+    /// Three numbers `R,G,B` (none negative).
+    Rgb,
     /// A file written; `ext` when the name must end in it.
     OutFile { ext: Option<&'static str> },
     /// A directory written into (created when missing).
@@ -42,7 +44,12 @@ impl Kind {
     pub fn is_numeric(self) -> bool {
         matches!(
             self,
-            Kind::Count | Kind::Number { .. } | Kind::Size | Kind::Vec3 { .. } | Kind::NumberList
+            Kind::Count
+                | Kind::Number { .. }
+                | Kind::Size
+                | Kind::Vec3 { .. }
+                | Kind::NumberList
+                | Kind::Rgb
         )
     }
 }
@@ -92,6 +99,8 @@ const G: Kind = Kind::Number {
     bad_negative: "-1",
 };
 const PNG: Kind = Kind::OutFile { ext: Some("png") };
+/// A glTF file whose skin declares its optics (`--model` of the measurement commands).
+const SKIN_FILE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/assets/character.glb");
 const RENDER_OUT: &[&str] = &["--out", "{tmp}/never.png"];
 
 pub const ROWS: &[Row] = &[
@@ -163,6 +172,12 @@ pub const ROWS: &[Row] = &[
     row("sss", "material", Kind::Name),
     row("sss", "eta", NUM),
     row("sss", "g", G),
+    with("sss", "sigma-a", Kind::Rgb, &["--sigma-s", "1,1,1"]),
+    with("sss", "sigma-s", Kind::Rgb, &["--sigma-a", "0.1,0.1,0.1"]),
+    with("sss", "albedo", Kind::Rgb, &["--mfp-mm", "1,1,1"]),
+    with("sss", "mfp-mm", Kind::Rgb, &["--albedo", "0.5,0.5,0.5"]),
+    row("sss", "model", Kind::InFile),
+    with("sss", "skin-material", Kind::Name, &["--model", SKIN_FILE]),
     row("sss", "photons", Kind::Count),
     row("sss", "seed", Kind::Count),
     row("sss", "json", Kind::Switch),
@@ -173,6 +188,44 @@ pub const ROWS: &[Row] = &[
         "material",
         Kind::Name,
         &["--out", "{tmp}/reference"],
+    ),
+    with("reference", "eta", NUM, &["--out", "{tmp}/reference"]),
+    with("reference", "g", G, &["--out", "{tmp}/reference"]),
+    with(
+        "reference",
+        "sigma-a",
+        Kind::Rgb,
+        &["--out", "{tmp}/reference", "--sigma-s", "1,1,1"],
+    ),
+    with(
+        "reference",
+        "sigma-s",
+        Kind::Rgb,
+        &["--out", "{tmp}/reference", "--sigma-a", "0.1,0.1,0.1"],
+    ),
+    with(
+        "reference",
+        "albedo",
+        Kind::Rgb,
+        &["--out", "{tmp}/reference", "--mfp-mm", "1,1,1"],
+    ),
+    with(
+        "reference",
+        "mfp-mm",
+        Kind::Rgb,
+        &["--out", "{tmp}/reference", "--albedo", "0.5,0.5,0.5"],
+    ),
+    with(
+        "reference",
+        "model",
+        Kind::InFile,
+        &["--out", "{tmp}/reference"],
+    ),
+    with(
+        "reference",
+        "skin-material",
+        Kind::Name,
+        &["--out", "{tmp}/reference", "--model", SKIN_FILE],
     ),
     row("reference", "seed", Kind::Count),
     row("reference", "scene", Kind::Name),
@@ -201,9 +254,50 @@ pub const ROWS: &[Row] = &[
     row("texturing", "patch-only", Kind::Switch),
     row("profile", "shading", Kind::Name),
     row("profile", "all", Kind::Switch),
-    row("profile", "material", Kind::Name),
-    row("profile", "eta", NUM),
-    row("profile", "g", G),
+    with(
+        "profile",
+        "material",
+        Kind::Name,
+        &["--light-height-mm", "5"],
+    ),
+    with("profile", "eta", NUM, &["--light-height-mm", "5"]),
+    with("profile", "g", G, &["--light-height-mm", "5"]),
+    with(
+        "profile",
+        "sigma-a",
+        Kind::Rgb,
+        &["--light-height-mm", "5", "--sigma-s", "1,1,1"],
+    ),
+    with(
+        "profile",
+        "sigma-s",
+        Kind::Rgb,
+        &["--light-height-mm", "5", "--sigma-a", "0.1,0.1,0.1"],
+    ),
+    with(
+        "profile",
+        "albedo",
+        Kind::Rgb,
+        &["--light-height-mm", "5", "--mfp-mm", "1,1,1"],
+    ),
+    with(
+        "profile",
+        "mfp-mm",
+        Kind::Rgb,
+        &["--light-height-mm", "5", "--albedo", "0.5,0.5,0.5"],
+    ),
+    with(
+        "profile",
+        "model",
+        Kind::InFile,
+        &["--light-height-mm", "5"],
+    ),
+    with(
+        "profile",
+        "skin-material",
+        Kind::Name,
+        &["--light-height-mm", "5", "--model", SKIN_FILE],
+    ),
     row("profile", "light-height-mm", NUM),
     row("profile", "edges-mm", Kind::NumberList),
     row("profile", "json", Kind::Switch),
@@ -231,6 +325,12 @@ pub const ROWS: &[Row] = &[
         &["--out", "{tmp}/face"],
     ),
     row("bench face", "no-normal-map", Kind::Switch),
+    with(
+        "bench face",
+        "sweep",
+        Kind::InFile,
+        &["--out", "{tmp}/face"],
+    ),
     row("bench shading", "out", Kind::OutDir),
     row("bench shading", "rounds", Kind::Count),
     with(
@@ -238,6 +338,62 @@ pub const ROWS: &[Row] = &[
         "mali",
         Kind::InFile,
         &["--out", "{tmp}/bench"],
+    ),
+    with(
+        "bench shading",
+        "reference",
+        Kind::InFile,
+        &["--out", "{tmp}/bench"],
+    ),
+    with(
+        "bench shading",
+        "photons",
+        Kind::Count,
+        &["--out", "{tmp}/bench"],
+    ),
+    with(
+        "bench shading",
+        "material",
+        Kind::Name,
+        &["--out", "{tmp}/bench"],
+    ),
+    with("bench shading", "eta", NUM, &["--out", "{tmp}/bench"]),
+    with("bench shading", "g", G, &["--out", "{tmp}/bench"]),
+    with(
+        "bench shading",
+        "sigma-a",
+        Kind::Rgb,
+        &["--out", "{tmp}/bench", "--sigma-s", "1,1,1"],
+    ),
+    with(
+        "bench shading",
+        "sigma-s",
+        Kind::Rgb,
+        &["--out", "{tmp}/bench", "--sigma-a", "0.1,0.1,0.1"],
+    ),
+    with(
+        "bench shading",
+        "albedo",
+        Kind::Rgb,
+        &["--out", "{tmp}/bench", "--mfp-mm", "1,1,1"],
+    ),
+    with(
+        "bench shading",
+        "mfp-mm",
+        Kind::Rgb,
+        &["--out", "{tmp}/bench", "--albedo", "0.5,0.5,0.5"],
+    ),
+    with(
+        "bench shading",
+        "model",
+        Kind::InFile,
+        &["--out", "{tmp}/bench"],
+    ),
+    with(
+        "bench shading",
+        "skin-material",
+        Kind::Name,
+        &["--out", "{tmp}/bench", "--model", SKIN_FILE],
     ),
     row("bench effects", "rounds", Kind::Count),
     row("bench effects", "frames", Kind::Count),

@@ -108,3 +108,53 @@ fn profile_of_tabulated_and_ward_against_the_point_light_reference() {
         );
     }
 }
+
+/// `profile --json` for `medium` (flags) through Burley (spatial, and it reads no measured
+/// table).
+fn profile_of(medium: &[&str]) -> Value {
+    let out = Command::new(env!("CARGO_BIN_EXE_dermis"))
+        .args([
+            "profile",
+            "--shading",
+            "ward,burley",
+            "--light-height-mm",
+            "5",
+        ])
+        .args(medium)
+        .arg("--json")
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "dermis profile {medium:?}: {stderr}");
+    serde_json::from_slice(&out.stdout).expect("JSON on stdout")
+}
+
+#[test]
+fn any_medium_reaches_the_renderer_by_its_numbers() {
+    // skin1 by name and by its coefficients (σ_s = σ'_s at g = 0) render the same profile.
+    let m = dermis_engine::shading::material::SKIN1;
+    let rgb = |v: [f64; 3]| format!("{},{},{}", v[0], v[1], v[2]);
+    let (a, s) = (rgb(m.sigma_a), rgb(m.sigma_s_prime));
+    let eta = m.eta.to_string();
+    let named = profile_of(&["--material", "skin1"]);
+    let numbers = profile_of(&["--sigma-a", &a, "--sigma-s", &s, "--eta", &eta]);
+    assert_eq!(named["models"], numbers["models"]);
+    // A paler medium given by its albedo and mean free path reflects more in every channel.
+    let pale = profile_of(&["--albedo", "0.8,0.7,0.6", "--mfp-mm", "1.2,1.0,0.9"]);
+    let total = |v: &Value, model: &str| -> [f64; 3] {
+        let rows: Vec<[f64; 3]> =
+            serde_json::from_value(v["models"][model]["exitance"].clone()).unwrap();
+        std::array::from_fn(|c| rows.iter().map(|r| r[c]).sum())
+    };
+    for model in ["burley"] {
+        let (skin, p) = (total(&named, model), total(&pale, model));
+        for c in 0..3 {
+            assert!(
+                p[c] > skin[c],
+                "{model} channel {c}: {} vs skin1 {}",
+                p[c],
+                skin[c]
+            );
+        }
+    }
+}
