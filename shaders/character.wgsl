@@ -102,18 +102,11 @@ fn skin_surface(in: VertexOut, front: bool) -> Surface {
 #endif
 
 #ifdef SCREEN_SPACE
-// A frame with the subsurface pass writes three targets: radiance that stays (rgb) with the
-// skin marker (a: 1 skin, 0 not), the irradiance the pass spreads (rgb) with the pixel's size
-// in mm (a), and the exit factor per channel (rgb): what turns the spread exitance into
-// radiance toward the viewer here. The pixel's size: the world-space step between
-// neighbouring pixels, minus its part along the view ray, its footprint on the plane facing
-// the camera at this depth.
-struct SplitOut {
-    @location(0) colour: vec4<f32>,
-    @location(1) spread: vec4<f32>,
-    @location(2) exit: vec4<f32>,
-};
+#import split_out
 
+// A frame with the subsurface pass: the three targets (`SplitOut`). The pixel's size: the
+// world-space step between neighbouring pixels, minus its part along the view ray, its
+// footprint on the plane facing the camera at this depth.
 @fragment
 fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> SplitOut {
     var out: SplitOut;
@@ -135,7 +128,7 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> SplitOut {
     let px = 0.5 * (length(dx - s.v * dot(s.v, dx)) + length(dy - s.v * dot(s.v, dy)));
     let p = shade_split(s);
     out.colour = vec4<f32>(p.local, 1.0);
-    out.spread = vec4<f32>(p.spread, max(px * 1000.0, 1e-6));
+    out.spread = vec4<f32>(p.spread, max(px * MM_PER_M, 1e-6));
     out.exit = vec4<f32>(p.exit, 0.0);
 #endif
     return out;

@@ -1,43 +1,9 @@
 // Shared by every pass: the per-frame uniform, the shading surface, light and tone mapping.
 
 #import consts
-
-const PI: f32 = 3.14159265358979;
-const INV_PI: f32 = 0.318309886183791;
-
-struct FrameUniform {
-    view_proj: mat4x4<f32>,
-    camera_pos: vec3<f32>,
-    // Multiplies radiance before tone mapping.
-    exposure: f32,
-    // The point light's position (m) and radiant intensity (W/sr).
-    light_pos: vec3<f32>,
-    light_intensity: f32,
-    // The light's colour (linear).
-    light_color: vec3<f32>,
-    // 1 when the target is not an sRGB format and the shader encodes by hand.
-    srgb_encode: u32,
-    // Ambient radiance (linear).
-    ambient: vec3<f32>,
-    // 1 to write raw radiance (float targets, numerical checks).
-    raw_output: u32,
-    // The key light's shadow map (core/src/render/shadow_view.rs): world → its clip space.
-    shadow_view_proj: mat4x4<f32>,
-    // 1 when a shadow map was drawn this frame (0: nothing casts, every point is lit).
-    shadow_drawn: u32,
-    // How far receivers move their test point off the surface (m, half a texel).
-    shadow_normal_offset: f32,
-    // The depth bias (the map's depth units).
-    shadow_bias: f32,
-    // One texel of the map, in uv.
-    shadow_texel: f32,
-    // The penumbra map (core/src/render/passes/penumbra.rs): 1 when drawn this frame; its
-    // grid size; the shadow map's width at the casters (m); the depth step of an edge.
-    penumbra_drawn: u32,
-    penumbra_grid: f32,
-    shadow_width: f32,
-    edge_gap: f32,
-};
+// The frame's uniform (`FrameUniform`, generated from its Rust declaration in
+// engine/src/shader/uniforms.rs; filled by engine/src/render/frame_uniform.rs).
+#import FrameUniform
 
 @group(0) @binding(0) var<uniform> frame: FrameUniform;
 @group(0) @binding(1) var shadow_map: texture_depth_2d;

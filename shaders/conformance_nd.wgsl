@@ -1,4 +1,4 @@
-// GPU conformance harness, nondimensional kernel (driver: core/src/shading/conformance.rs).
+// GPU conformance harness, nondimensional kernel (driver: measure/src/conformance/harness.rs).
 // Not a composer module: appended, with a per-function `nd_probe`, to the composition of one
 // `*_nd` module (or `fresnel`) as the renderer imports it, in f32, or with flag REAL_F16
 // after `enable f16;` so the very same functions run in half precision. Inputs are 8 f32 per

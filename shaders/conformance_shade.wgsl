@@ -1,24 +1,13 @@
-// GPU conformance harness, f32 kernel (driver: core/src/shading/conformance.rs).
-// Not a composer module: the harness appends this text, plus a per-model
-// `conformance_probe`, to `compose("shading_model", &model.defs())`, i.e. to exactly the
-// model code the renderer's character pipeline composes (same alias, same flags), with the
-// Frame uniform at @group(0) and ModelParams at @group(1) bound as in the renderer.
+// GPU conformance harness, f32 kernel (driver: measure/src/conformance/harness.rs).
+// Not a shared composer module: the harness composes it after `shading_model` with the
+// model's flags, i.e. exactly the model code the renderer's character pipeline composes (same
+// alias, same flags), and a per-model `conformance_probe`, with the Frame uniform at
+// @group(0) and ModelParams at @group(1) bound as in the renderer.
 // Each item builds a Surface the way make_surface does (light distance ≥ 1 mm, thickness ≥ 0)
 // and writes shade(s) and the model's sub-function probe.
 
-struct ConformanceInput {
-    n: vec4<f32>,
-    t: vec4<f32>,
-    b: vec4<f32>,
-    l: vec4<f32>,
-    v: vec4<f32>,
-    // rgb: light intensity × colour; w: light distance (m).
-    light: vec4<f32>,
-    // rgb: albedo; w: thickness (m).
-    albedo: vec4<f32>,
-    // x: the probe's argument (r or d in mm).
-    probe: vec4<f32>,
-};
+// One item (`ConformanceInput`, generated from its Rust declaration in the harness).
+#import ConformanceInput
 
 @group(2) @binding(0) var<storage, read> conformance_in: array<ConformanceInput>;
 @group(2) @binding(1) var<storage, read_write> conformance_out: array<vec4<f32>>;
@@ -37,7 +26,7 @@ fn conformance_shade(@builtin(global_invocation_id) id: vec3<u32>) {
     s.b = x.b.xyz;
     s.v = x.v.xyz;
     s.l = x.l.xyz;
-    s.light_dist = max(x.light.w, 1e-3);
+    s.light_dist = max(x.light.w, LIGHT_D_MIN_M);
     s.light = x.light.rgb;
     s.visibility = 1.0;
     s.shadow_coord = vec4<f32>(0.0);

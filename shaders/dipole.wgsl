@@ -1,39 +1,12 @@
 // The paper's scaled BSSRDF (§3.2, eq. 2–4): Jensen's dipole R_d(r) with r the scaled distance
 // to the light, S_d = F_t(ω_i) R_d(r) F_t(ω_o) / π. The dipole uses a grey texture (§4.1).
-// CPU: core/src/shading/dipole.rs.
+// CPU: engine/src/shading/dipole.rs.
 #import common
 #import fresnel
 #import dipole_nd
 
-// Declared once, in core/src/shading/dipole.rs (`DipoleUniform`): the same members in the same
-// order (core/tests/uniform_layout.rs checks names, offsets and sizes).
-struct DipoleUniform {
-    // σ_tr (mm⁻¹).
-    sigma_tr: vec3<f32>,
-    // η.
-    eta: f32,
-    // z_r (mm).
-    z_r: vec3<f32>,
-    // mm of r per metre of light distance.
-    r_mm_per_m: f32,
-    // z_v (mm).
-    z_v: vec3<f32>,
-    // Area (mm²) turning R_d into a reflectance.
-    area_mm2: f32,
-    // α'.
-    albedo: vec3<f32>,
-    // Minimum light distance (m).
-    light_d_min_m: f32,
-    // Total diffuse reflectance R_d (ambient term).
-    total: vec3<f32>,
-    _pad0: f32,
-    // σ'_t = 1/ℓ (mm⁻¹).
-    sigma_t_prime: vec3<f32>,
-    _pad1: f32,
-    // σ_tr ℓ = √(3σ_a/σ'_t) and z_v/ℓ = 1 + 4A/3 (standard form's nondimensional inputs).
-    s_nd: vec3<f32>,
-    zv_nd: f32,
-};
+// `DipoleUniform`, generated from its Rust declaration (engine/src/shading/dipole.rs).
+#import DipoleUniform
 
 @group(1) @binding(0) var<uniform> model: DipoleUniform;
 

@@ -1,5 +1,5 @@
 // Jensen's dipole R_d on nondimensional inputs (lengths in units of ℓ = 1/σ'_t).
-// CPU twin: core/src/shading/dipole.rs (`rd_nd`).
+// CPU twin: engine/src/shading/dipole.rs (`rd_nd`).
 //   rho = r / ℓ = σ'_t r;  s = σ_tr ℓ = √(3 (1 − α')), with 1 − α' = σ_a/σ'_t (no
 //   cancellation at α' → 1);  zv = z_v / ℓ = 1 + 4A/3;  so σ_tr r = s·rho.
 //   Returns R_d ℓ² = α'/(4π) [ (s d_r + 1) e^{−s d_r} / d_r³ + zv (s d_v + 1) e^{−s d_v} / d_v³ ],
@@ -13,5 +13,5 @@ fn dipole_rd_nd(rho: vec3<real>, s: vec3<real>, zv: real, albedo: vec3<real>) ->
     let dv = sqrt(zv * zv + rho2);
     let src = (s * dr + 1.0) * exp(-s * dr) / (dr * dr * dr);
     let virt = zv * (s * dv + 1.0) * exp(-s * dv) / (dv * dv * dv);
-    return albedo * (0.25 * ND_INV_PI) * (src + virt);
+    return albedo * (0.25 * INV_PI) * (src + virt);
 }

@@ -1,5 +1,5 @@
 // Fresnel transmittance for light crossing from outside (index 1) into a medium of relative
-// index eta, at incidence cosine cos_i. CPU twin: core/src/shading/fresnel.rs.
+// index eta, at incidence cosine cos_i. CPU twin: engine/src/shading/fresnel.rs.
 // Nondimensional (η, a cosine), so it is written in `real` (f32 in the renderer).
 // Stable form: with q = η² cos²θ_t = (η − 1)(η + 1) + cos²θ_i, 1 − r_s² = 4c√q/(c + √q)² and
 // 1 − r_p² = 4η²c√q/(η²c + √q)², so F_t = 2c√q (1/(c + √q)² + η²/(η²c + √q)²): a sum of

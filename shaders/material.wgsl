@@ -1,25 +1,9 @@
-// A glTF material's constants and textures (core/src/render/material_gpu.rs, declared once
-// there as `MaterialUniform`): a skinned subject binds it at group 3, props (INSTANCED) at
-// group 1. A texture the material lacks is a stand-in that leaves its factor as it is.
+// A glTF material's constants (`MaterialUniform`, generated from its Rust declaration in
+// engine/src/shader/uniforms.rs; filled by engine/src/render/material_gpu.rs) and textures: a
+// skinned subject binds them at group 3, props (INSTANCED) at group 1. A texture the material
+// lacks is a stand-in that leaves its factor as it is.
 #import common
-
-struct MaterialUniform {
-    // Linear RGBA: the base colour factor; a skin's albedo factor.
-    base_color: vec4<f32>,
-    // Linear emission (factor × strength).
-    emissive: vec3<f32>,
-    metallic: f32,
-    roughness: f32,
-    normal_scale: f32,
-    occlusion_strength: f32,
-    // Alpha below which a MASK material is absent.
-    alpha_cutoff: f32,
-    // 1: the albedo is the skin's pigment per texel; 0: the medium's own.
-    pigmented: u32,
-    _pad0: u32,
-    _pad1: u32,
-    _pad2: u32,
-};
+#import MaterialUniform
 
 #ifdef INSTANCED
 @group(1) @binding(0) var<uniform> material: MaterialUniform;

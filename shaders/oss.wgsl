@@ -1,40 +1,12 @@
-// The authors' OSS colour model (§3.3, eq. 5–6). CPU: core/src/shading/oss.rs.
+// The authors' OSS colour model (§3.3, eq. 5–6). CPU: engine/src/shading/oss.rs.
 // As printed (`oss`): f_d is a cubic in the depth d (mm) with material-only coefficients
 // precomputed on the CPU. `oss-stable` (flag OSS_STABLE): positive, bounded terms.
 #import common
 #import ward_lobe
 #import oss_nd
 
-// Declared once, in core/src/shading/oss.rs (`OssUniform`): the same members in the same order
-// (core/tests/uniform_layout.rs checks names, offsets and sizes).
-struct OssUniform {
-    // f_d = c0 + c1 d + c2 d² + c3 d³ per channel (printed form).
-    c0: vec3<f32>,
-    // mm of depth per metre of thickness.
-    depth_mm_per_m: f32,
-    c1: vec3<f32>,
-    _pad0: f32,
-    c2: vec3<f32>,
-    _pad1: f32,
-    c3: vec3<f32>,
-    _pad2: f32,
-    // ρ_d, ρ_ts, the minimum light distance (m) for d^-2.5, 1 when the texture tints.
-    rho_d: f32,
-    rho_ts: f32,
-    light_d_min_m: f32,
-    textured: f32,
-    // The Ward lobe.
-    rho_s: f32,
-    alpha_x: f32,
-    alpha_y: f32,
-    _pad3: f32,
-    // σ_a (mm⁻¹) and F_dr(η). Stable form only.
-    sigma_a: vec3<f32>,
-    fdr: f32,
-    // σ'_s P (mm⁻¹). Stable form only.
-    sp: vec3<f32>,
-    _pad4: f32,
-};
+// `OssUniform`, generated from its Rust declaration (engine/src/shading/oss.rs).
+#import OssUniform
 
 @group(1) @binding(0) var<uniform> model: OssUniform;
 

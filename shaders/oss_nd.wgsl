@@ -1,4 +1,4 @@
-// OSS-stable's f_d on nondimensional inputs. CPU twin: core/src/shading/oss.rs (`f_d_stable_nd`).
+// OSS-stable's f_d on nondimensional inputs. CPU twin: engine/src/shading/oss.rs (`f_d_stable_nd`).
 //   a = σ_a d, sp = σ'_s P(g) d (optical depths), f = F_dr(η):
 //   f_d = (1 − f) (top + f e^{−(a + sp)}),  top = 1 − e^{−y} = y E(y),  y = sp E(2a),
 //   E(x) = (1 − e^{−x})/x: sp E(2a) = σ'_s P ∫₀^d e^{−2σ_a x} dx.

@@ -1,38 +1,32 @@
-// The penumbra map (core/src/render/passes/penumbra.rs): for every texel of a coarse grid over the
-// key light's shadow map, the nearest edge of a caster seen from the light — where its depth
-// steps back by more than a gap — and that caster's depth. A receiver reads it to know how far
-// it is from the nearest shadow edge, so a model can filter its shadow by the material's
-// diffusion profile (preintegrated: the edge-spread function in its LUT).
+// The penumbra map (engine/src/render/passes/penumbra.rs): for every texel of a coarse grid
+// over the key light's shadow map, the nearest edge of a caster seen from the light — where
+// its depth steps back by more than a gap — and that caster's depth. A receiver reads it to
+// know how far it is from the nearest shadow edge, so a model can filter its shadow by the
+// material's diffusion profile (a LUT model: the edge-spread function in its LUT).
 //
-// Seed pass: a grid texel (8×8 map texels) is a seed when a caster's edge lies in its block or
-// on its one-texel border: a depth step that breaks the local slope by more than a gap (see
-// `edge`); its depth is the edge's near side. Jump flooding (Rong & Tan 2006): passes with
+// Seed pass: a grid texel (a block of PENUMBRA_BLOCK² map texels) is a seed when a caster's
+// edge lies in its block or on its one-texel border: a depth step that breaks the local slope
+// by more than a gap (see `edge`); its depth is the edge's near side. Jump flooding (Rong & Tan 2006): passes with
 // halving steps each keep the nearest seed among nine texels a step apart. Loops are written
 // out, so a static cycle count sees every fetch.
 //
 // Texel: xy the seed's position (uv of the map), z the caster's depth there, w 1 (0: none).
 
-struct Jump {
-    // This pass's step (grid texels; 0: the seed pass).
-    step: f32,
-    // The grid's size (texels per side).
-    grid: f32,
-    // Shadow-map texels per grid texel.
-    block: f32,
-    // The depth step that makes an edge (the map's depth units).
-    edge_gap: f32,
-};
+#import consts
+#import fullscreen
 
-@group(0) @binding(0) var<uniform> jump: Jump;
+// One pass's constants (`PenumbraUniform`, generated from its Rust declaration in
+// engine/src/shader/uniforms.rs).
+#import PenumbraUniform
+
+// The seed pass's strips are written out for blocks of 8 × 8 map texels: a block of another
+// size in the Rust side's constant stops the composition here.
+const_assert PENUMBRA_BLOCK == 8u;
+
+@group(0) @binding(0) var<uniform> jump: PenumbraUniform;
 @group(0) @binding(1) var depth_map: texture_depth_2d;
 @group(0) @binding(2) var depth_sampler: sampler;
 @group(0) @binding(3) var previous: texture_2d<f32>;
-
-@vertex
-fn vs_main(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
-    let uv = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
-    return vec4<f32>(uv * 2.0 - 1.0, 0.0, 1.0);
-}
 
 // `z` or, where the step b → c is a caster's edge, the depth of its near side if nearer; two
 // lines at once. A step is an edge where it breaks the local slope: it differs by more than
@@ -85,7 +79,7 @@ fn fs_seed(@builtin(position) at: vec4<f32>) -> @location(0) vec4<f32> {
     let size = jump.grid;
     // The block's centre: a texel corner (block texels 0…7, the corner at 4).
     let centre = at.xy / size;
-    let texel = 1.0 / (size * jump.block);
+    let texel = 1.0 / (size * f32(PENUMBRA_BLOCK));
     // The 10×10 of the block and its one-texel border (texels −1…8; a step into a
     // neighbour's block seeds both), each line with one more texel at either end: five strips
     // of two rows (−1/0, 1/2, …, 7/8) along x, then five of two columns along y.

@@ -1,6 +1,6 @@
 // Mobile tier: pre-integrated skin (Penner & Borshukov 2011). The response of spheres of
 // every radius under a directional light, measured once per material by the Monte Carlo
-// sphere walker (core/src/shading/preintegrated.rs), in a LUT over (n·l, curvature); per pixel
+// sphere walker (engine/src/shading/preintegrated.rs), in a LUT over (n·l, curvature); per pixel
 // one fetch, no pass. A point light's irradiance is blurred by lifting the light by the
 // kernel's Poisson height (the Poisson kernel is its own semigroup: blurring the irradiance of
 // a light at height h with a Poisson kernel of height s gives the light at height h + s).
@@ -11,11 +11,11 @@
 @group(1) @binding(1) var lut: texture_2d<f32>;
 @group(1) @binding(2) var lut_sampler: sampler;
 
-// LUT rows (core/src/shading/preintegrated.rs; their counts from `consts`): the sphere
+// LUT rows (engine/src/shading/preintegrated.rs; their counts from `consts`): the sphere
 // response over (n·l, curvature), then the exit/entry Fresnel factors over cos θ, then the
 // backlit slab's transmittance over log2(t/SLAB_FIRST_MM)/LUT_SLAB_SPAN, then the
 // edge-spread function (log2) over the signed distance to a shadow edge
-// (core/src/shading/edge_spread.rs), spanning ±PENUMBRA_SPAN_MM quadratically.
+// (engine/src/shading/edge_spread.rs), spanning ±PENUMBRA_SPAN_MM quadratically.
 fn lut_row(u: f32, row: f32) -> vec4<f32> {
     let u_tex = (clamp(u, 0.0, 1.0) * (LUT_U - 1.0) + 0.5) / LUT_U;
     return textureSampleLevel(lut, lut_sampler, vec2<f32>(u_tex, (row + 0.5) / LUT_TEXTURE_ROWS), 0.0);
@@ -57,7 +57,7 @@ fn penumbra(s: Surface, v: f32) -> vec3<f32> {
         return vec3<f32>(v);
     }
     // Across the light's image plane, stretched onto the surface by the incidence.
-    let to_mm = frame.shadow_width * 1000.0 / max(nl, 0.25);
+    let to_mm = frame.shadow_width * MM_PER_M / max(nl, 0.25);
     let texel_mm = frame.shadow_texel * to_mm;
     var d = select(-1.0, 1.0, v >= 0.5) * max(length(seed.xy - c.xy) * to_mm, 0.5 * SHADOW_RAMP_TEXELS * texel_mm);
     if (v > 0.0 && v < 1.0) {
@@ -71,13 +71,13 @@ fn penumbra(s: Surface, v: f32) -> vec3<f32> {
 fn shade(s: Surface) -> vec3<f32> {
     let exit = lut_row(dot(s.n, s.v), LUT_CURVATURE_ROWS).r;
     // Curvature axis: v = R0 / (R0 + ρ), within the curvature rows.
-    let rho_mm = s.curvature_radius * 1000.0;
+    let rho_mm = s.curvature_radius * MM_PER_M;
     let v = model.lut_r0_mm / (model.lut_r0_mm + rho_mm);
     let v_tex = min(v * LUT_CURVATURE_ROWS, LUT_CURVATURE_ROWS - 0.5) / LUT_TEXTURE_ROWS;
     // The light lifted by each channel's Poisson height s_c: its distance² over the tangent
     // plane, d² + 2 h s_c + s_c² (h its height, mm), scales each channel's irradiance; one
     // fetch at the cosine of the light lifted by the channels' mean height serves all three.
-    let d = s.light_dist * 1000.0;
+    let d = s.light_dist * MM_PER_M;
     let h = dot(s.n, s.l) * d;
     let lift = model.lift;
     let d2 = max(vec3<f32>(d * d) + 2.0 * h * lift + lift * lift, vec3<f32>(1e-12));

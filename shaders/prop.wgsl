@@ -49,13 +49,9 @@ fn prop_radiance(in: VertexOut) -> vec3<f32> {
 }
 
 #ifdef SCREEN_SPACE
-// In a frame with the subsurface pass: linear radiance, marker 0, nothing to spread.
-struct SplitOut {
-    @location(0) colour: vec4<f32>,
-    @location(1) spread: vec4<f32>,
-    @location(2) exit: vec4<f32>,
-};
+#import split_out
 
+// In a frame with the subsurface pass: linear radiance, marker 0, nothing to spread.
 @fragment
 fn fs_main(in: VertexOut) -> SplitOut {
     var out: SplitOut;

@@ -52,14 +52,10 @@ fn blob_factor(in: VertexOut) -> f32 {
 }
 
 #ifdef SCREEN_SPACE
-struct SplitOut {
-    @location(0) colour: vec4<f32>,
-    // Write-masked off: the spread irradiance and the exit factor stay as the scene wrote
-    // them.
-    @location(1) spread: vec4<f32>,
-    @location(2) exit: vec4<f32>,
-};
+#import split_out
 
+// In a frame with the subsurface pass: the spread irradiance and the exit factor are
+// write-masked off (they stay as the scene wrote them).
 @fragment
 fn fs_main(in: VertexOut) -> SplitOut {
     var out: SplitOut;

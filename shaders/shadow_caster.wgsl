@@ -1,14 +1,13 @@
-// The key light's shadow map (core/src/render/passes/shadow_map.rs): casters drawn depth-only from
-// the light. The skinned character through its joint palette; a measurement scene's occluder
-// as world-space triangles.
+// The key light's shadow map (engine/src/render/passes/shadow_map.rs): casters drawn
+// depth-only from the light. The skinned character through its joint palette; a measurement
+// scene's occluder as world-space triangles.
 #import skinning
 
-struct Caster {
-    // World → the shadow map's clip space.
-    view_proj: mat4x4<f32>,
-};
+// Its constants (`CasterUniform`, generated from its Rust declaration in
+// engine/src/shader/uniforms.rs).
+#import CasterUniform
 
-@group(0) @binding(0) var<uniform> caster: Caster;
+@group(0) @binding(0) var<uniform> caster: CasterUniform;
 
 struct SkinnedIn {
     @location(0) position: vec3<f32>,

@@ -11,32 +11,15 @@
 // centre pixel: energy stays where the surface is. Output: radiance that stayed + exit ·
 // exitance (the exit factor per channel, from its own target: the pigment's way out), then
 // exposure, tone mapping and encoding as every other pass.
-// Driver: core/src/render/passes/subsurface.rs.
+// Driver: engine/src/render/passes/subsurface.rs.
 #import common
-
 #import consts
+#import fullscreen
 
-// One ring of the kernel: its mass per channel and its outer radius (mm). Ring k starts where
-// ring k − 1 ends, ring 0 at the centre's radius.
-struct Ring {
-    mass: vec3<f32>,
-    outer_mm: f32,
-};
-
-struct KernelUniform {
-    // Rings used, directions sampled per ring, and how far a sample's pixel size may differ
-    // from the centre's (relative) and still count as the same surface.
-    ring_count: u32,
-    angles: u32,
-    depth_tolerance: f32,
-    _pad0: f32,
-    // The clear colour as displayed: where nothing was drawn (colour alpha < 0).
-    background: vec4<f32>,
-    // The inner disk (taken at the pixel): its mass and radius (mm).
-    centre_mass: vec3<f32>,
-    centre_radius_mm: f32,
-    rings: array<Ring, MAX_RINGS>,
-};
+// The kernel (`KernelUniform`, generated from its Rust declaration in
+// engine/src/shading/subsurface.rs): one ring per `Ring`, its mass per channel and its outer
+// radius (mm); ring k starts where ring k − 1 ends, ring 0 at the centre's radius.
+#import KernelUniform
 
 @group(1) @binding(0) var<uniform> kernel: KernelUniform;
 @group(1) @binding(1) var colour_tex: texture_2d<f32>;
@@ -45,19 +28,6 @@ struct KernelUniform {
 // The exit factor per channel (pigment included): what turns the gathered exitance into
 // radiance toward the viewer.
 @group(1) @binding(4) var exit_tex: texture_2d<f32>;
-
-struct VertexOut {
-    @builtin(position) clip: vec4<f32>,
-};
-
-// One triangle covering the screen.
-@vertex
-fn vs_main(@builtin(vertex_index) i: u32) -> VertexOut {
-    let uv = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
-    var out: VertexOut;
-    out.clip = vec4<f32>(uv * 2.0 - 1.0, 0.0, 1.0);
-    return out;
-}
 
 fn frame_background() -> vec4<f32> {
     return kernel.background;
@@ -75,9 +45,9 @@ fn hash(p: vec2<u32>, k: u32) -> f32 {
 }
 
 @fragment
-fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
+fn fs_main(@builtin(position) clip: vec4<f32>) -> @location(0) vec4<f32> {
     let size = vec2<f32>(textureDimensions(spread_tex));
-    let p = vec2<i32>(in.clip.xy);
+    let p = vec2<i32>(clip.xy);
     let colour = textureLoad(colour_tex, p, 0);
     let centre = textureLoad(spread_tex, p, 0);
     if (colour.a < -0.99) {
@@ -89,7 +59,7 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     let px_per_mm = 1.0 / centre.a;
     let rings = min(kernel.ring_count, MAX_RINGS);
     let angles = max(kernel.angles, 1u);
-    let step = 6.28318530717959 / f32(angles);
+    let step = 2.0 * PI / f32(angles);
     var m = kernel.centre_mass * centre.rgb;
     var inner = kernel.centre_radius_mm;
     let pixel = vec2<u32>(p);
@@ -108,7 +78,7 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
         var sum = vec3<f32>(0.0);
         for (var j = 0u; j < angles; j = j + 1u) {
             let a = turn + f32(k) * GOLDEN_ANGLE + f32(j) * step;
-            let at = in.clip.xy + r_px * vec2<f32>(cos(a), sin(a));
+            let at = clip.xy + r_px * vec2<f32>(cos(a), sin(a));
             var e = centre.rgb;
             if (all(at >= vec2<f32>(0.0)) && all(at < size)) {
                 let s = textureSampleLevel(spread_tex, spread_sampler, at / size, 0.0);

@@ -1,8 +1,8 @@
-// Shared by the spatial subsurface models (`tabulated`, `burley`, `preintegrated`): their one
-// uniform layout, the oblique-incidence and translucency tables, the exit distribution; and
-// the screen-space models' whole shader (composed with SCREEN_SPACE: `burley` and `tabulated`
-// differ only in their constants and kernel, not in code).
-// CPU twin: core/src/shading/subsurface.rs (`Params`, `split`, `translucency`).
+// Shared by the spatial subsurface models (their descriptors start from `subsurface::SPATIAL`):
+// their one uniform, the oblique-incidence and translucency tables, the exit distribution; and
+// the screen-space models' whole shader (composed with SCREEN_SPACE: they differ only in their
+// constants and kernel, not in code).
+// CPU twin: engine/src/shading/subsurface.rs (`Params`, `split`, `translucency`).
 //
 // Units: the tables are per unit incident power; thickness in mm; lengths on the surface in mm.
 // Exitance M leaves the smooth boundary with the radiance M · F_t(η, n·v) / (π C(η)),
@@ -11,38 +11,8 @@
 #import consts
 #import fresnel
 
-// Declared once, in core/src/shading/subsurface.rs (`SubsurfaceUniform`): the same members in
-// the same order (core/tests/uniform_layout.rs checks names, offsets and sizes).
-struct SubsurfaceUniform {
-    // Diffuse reflectance of the medium at normal incidence per incident power.
-    albedo: vec3<f32>,
-    eta: f32,
-    // 1/(π C(η)).
-    exit_norm: f32,
-    // 1/F_t(η, 1).
-    inv_entry: f32,
-    // mm per metre of thickness.
-    mm_per_m: f32,
-    // The pre-integration LUT's curvature scale R0 (mm).
-    lut_r0_mm: f32,
-    // Height (mm) the light is lifted by to blur a point light's irradiance (preintegrated).
-    lift: vec3<f32>,
-    // 1 for models with translucency (their composition sets TRANSLUCENCY; read by the f64
-    // twin).
-    translucent: f32,
-    // The medium's diffuse reflectance under uniform light as the model renders it: what
-    // ambient light reflects with, and what a pigment's albedo is relative to.
-    uniform_albedo: vec3<f32>,
-    _pad0: f32,
-    // rgb: q(μ_k) = R(μ_k)/R(1), μ_k = (k/(OBLIQUE_NODES − 1))² (tables are linear in √μ):
-    // oblique incidence relative to normal, per channel.
-    oblique: array<vec4<f32>, OBLIQUE_NODES>,
-    // rgb: ln of the diffuse transmittance of a slab SLAB_FIRST_MM · 2^k mm thick lit from
-    // behind.
-    slab: array<vec4<f32>, SLAB_NODES>,
-    // rgb: δ(μ_k) (mm): how far forward light entering at μ_k leaves, per channel.
-    shift: array<vec4<f32>, OBLIQUE_NODES>,
-};
+// `SubsurfaceUniform`, generated from its Rust declaration (engine/src/shading/subsurface.rs).
+#import SubsurfaceUniform
 
 @group(1) @binding(0) var<uniform> model: SubsurfaceUniform;
 
@@ -206,8 +176,8 @@ fn sss_local(s: Surface) -> vec3<f32> {
 }
 
 #ifdef SCREEN_SPACE
-// The screen-space models (`burley`, `tabulated`: this module is theirs, their uniform and
-// kernel their own): the split the subsurface pass spreads, and the pixel on its own.
+// The screen-space models (this module is theirs, their uniform and kernel their own): the
+// split the subsurface pass spreads, and the pixel on its own.
 fn shade_split(s: Surface) -> Split {
     return sss_split(s);
 }

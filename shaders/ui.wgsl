@@ -4,12 +4,11 @@
 // target is an sRGB format (`params.screen.z == 1`) it is decoded to linear so the hardware's
 // re-encode gives back the authored colours.
 
-struct UiParams {
-    // x, y: surface size in pixels; z: 1 if the target format is sRGB; w: unused.
-    screen: vec4<f32>,
-}
+// Its constants (`UiUniform`, generated from its Rust declaration in
+// engine/src/shader/uniforms.rs).
+#import UiUniform
 
-@group(0) @binding(0) var<uniform> params: UiParams;
+@group(0) @binding(0) var<uniform> params: UiUniform;
 @group(0) @binding(1) var atlas: texture_2d<f32>;
 @group(0) @binding(2) var atlas_sampler: sampler;
 

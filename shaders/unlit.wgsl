@@ -1,11 +1,5 @@
-// Baseline for cost ratios: the skin's albedo, no lighting.
+// Baseline for cost ratios: the skin's albedo, no lighting (it reads no model uniform).
 #import common
-
-struct ModelParams {
-    unused: vec4<f32>,
-};
-
-@group(1) @binding(0) var<uniform> model: ModelParams;
 
 fn shade(s: Surface) -> vec3<f32> {
     return s.albedo;

@@ -1,26 +1,10 @@
-// Ward anisotropic BRDF (paper eq. 1; Walter 2005 standard form). CPU: core/src/shading/ward.rs.
+// Ward anisotropic BRDF (paper eq. 1; Walter 2005 standard form). CPU: engine/src/shading/ward.rs.
 // Diffuse colour = the dipole's total diffuse reflectance R_d(α') × texture (§4.1).
 #import common
 #import ward_lobe
 
-// Declared once, in core/src/shading/ward.rs (`WardUniform`): the same members in the same
-// order (core/tests/uniform_layout.rs checks names, offsets and sizes).
-struct WardUniform {
-    // R_d(α').
-    rho_d: vec3<f32>,
-    // 1 when the texture tints the diffuse colour.
-    textured: f32,
-    // The specular lobe.
-    rho_s: f32,
-    alpha_x: f32,
-    alpha_y: f32,
-    // The paper's sliders (§3.1).
-    slider_diffuse: f32,
-    slider_ambient: f32,
-    slider_specular: f32,
-    _pad0: f32,
-    _pad1: f32,
-};
+// `WardUniform`, generated from its Rust declaration (engine/src/shading/ward.rs).
+#import WardUniform
 
 @group(1) @binding(0) var<uniform> model: WardUniform;
 

@@ -1,5 +1,5 @@
 // The Ward anisotropic specular lobe (eq. 1), shared by `ward` and `oss`.
-// CPU twin: core/src/shading/ward.rs (`specular`, `specular_printed`); the standard form's
+// CPU twin: engine/src/shading/ward.rs (`specular`, `specular_printed`); the standard form's
 // maths is `ward_lobe_nd` (ward_nd.wgsl) on the cosines of the shading frame.
 #import common
 #import ward_nd
@@ -26,7 +26,7 @@ fn ward_specular(s: Surface, rho_s: f32, ax: f32, ay: f32) -> f32 {
     let cos2_phi_i = select(1.0, li.x * li.x / dot(li, li), dot(li, li) > 1e-12);
     let sin2_phi_o = 1.0 - select(1.0, vo.x * vo.x / dot(vo, vo), dot(vo, vo) > 1e-12);
     let e = -tan2_h * (cos2_phi_i / (ax * ax) + sin2_phi_o / (ay * ay));
-    return rho_s / (4.0 * PI * ax * ay * sqrt(max(nl * nv, 1e-6))) * exp(e);
+    return rho_s / (4.0 * PI * ax * ay * sqrt(max(nl * nv, WARD_COS_PRODUCT_MIN))) * exp(e);
 #else
     // Walter's half-vector form without angles: φ_h never needs to be defined.
     return ward_lobe_nd(nl, nv, dot(h, s.t), dot(h, s.b), hn, rho_s, ax, ay);

@@ -11,7 +11,7 @@
 //! first, to `docs/results/governor-front.txt`, which this module embeds: nothing here is
 //! copied by hand. A choice on the front steps down to the front models after it; a
 //! screen-space choice off the front to the one-pass front models; any other to the front's
-//! floor; `ward` (or `ward-printed`) is the floor. Every tier's pipeline is built at load by the
+//! floor, the front's last tier, a plain BRDF. Every tier's pipeline is built at load by the
 //! renderer, so a tier change creates nothing on the GPU.
 //!
 //! # What a frame needs ([`Needs`])

@@ -234,7 +234,13 @@ pub fn run(args: &FaceArgs, dir: &Path) -> Result<(), String> {
     }
     let labels: Vec<String> = lights
         .iter()
-        .map(|l| format!("{} ({:.0}° from the camera)", l.name, l.degrees_off_camera()))
+        .map(|l| {
+            format!(
+                "{} ({:.0}° from the camera)",
+                l.name,
+                l.degrees_off_camera()
+            )
+        })
         .collect();
     for (k, sheet) in sheets.into_iter().enumerate() {
         if let Some(sheet) = sheet {

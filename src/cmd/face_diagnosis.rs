@@ -15,8 +15,8 @@ use dermis_measure::face::regions::{ln_error_png, region_errors, RegionError};
 use dermis_measure::face::score::{block_means, Reference, BLOCK};
 use serde_json::{json, Value};
 
-/// Whether `m`'s errors are mapped and split by region: the spatial models, those that carry
-/// a diffusion kernel or a LUT (today `burley`, `tabulated`, `preintegrated`).
+/// Whether `m`'s errors are mapped and split by region: the spatial models, those whose
+/// descriptor carries a diffusion kernel or a LUT.
 pub fn mapped(m: ShadingModel) -> bool {
     let d = m.descriptor();
     d.kernel.is_some() || d.lut.is_some()

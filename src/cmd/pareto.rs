@@ -117,8 +117,8 @@ fn models(report: &Value) -> impl Iterator<Item = &Value> {
 /// governor's tiers (`governor-front.txt`, embedded by the core). The last tier is always a
 /// plain BRDF (no subsurface transport): the governor's floor, for an unlit or tiny character
 /// whose transport shows nothing and which then needs no LUT, penumbra map or subsurface pass.
-/// Where the front dominates every BRDF (`preintegrated` costs fewer G57 cycles than `ward`
-/// since the shared constants became compile-time), the cheapest BRDF is appended.
+/// Where the front dominates every BRDF (a one-pass subsurface model can cost fewer G57 cycles
+/// than the cheapest BRDF), the cheapest BRDF is appended.
 pub fn front_models(report: &Value) -> Vec<String> {
     let points = panel_points(report, true).0;
     let plain = |name: &str| {

@@ -115,7 +115,8 @@ fn every_registered_model_renders_and_is_listed_by_the_cli_and_the_menu() {
     assert_eq!(seen, ShadingModel::ALL.to_vec());
 }
 
-/// Named exceptions: where a model is named outside its own files on purpose.
+/// Named exceptions: where a model is named outside its own files on purpose, `(file, name,
+/// why)`.
 const EXCEPTIONS: &[(&str, &str, &str)] = &[
     (
         "android_app/src/soak.rs",
@@ -123,9 +124,16 @@ const EXCEPTIONS: &[(&str, &str, &str)] = &[
         "the Game Loop scenarios 1 and 3 run the paper's OSS by the published protocol",
     ),
     (
-        "engine/src/shader/consts.rs",
+        "engine/src/shading/bake.rs",
+        "tabulated",
+        "the measured tables' module names the two models that read them (being rewritten \
+         with the LUT code)",
+    ),
+    (
+        "engine/src/shading/bake.rs",
         "preintegrated",
-        "the shaders' copy of the LUT's layout (rows, width, slab span), written once in its file",
+        "the measured tables' module names the two models that read them (being rewritten \
+         with the LUT code)",
     ),
     (
         "measure/src/lut.rs",
@@ -144,67 +152,122 @@ const EXCEPTIONS: &[(&str, &str, &str)] = &[
     ),
 ];
 
-#[test]
-fn no_source_outside_a_models_place_names_it() {
+/// Models whose registry name is also the name of the maths they implement, which the
+/// shared modules and the paper's other models use by that name (Ward's lobe in OSS, the
+/// dipole's R_d as Ward's diffuse colour, OSS's colour model, Burley's diffusion profile and
+/// sampling): for these only the registry's variant and the module path count as naming the
+/// model. Every other model's name is its own: any mention counts.
+const CONCEPTS: &[&str] = &["ward", "dipole", "oss", "burley"];
+
+/// Whether `word` occurs in `text` as a whole word (not inside an identifier).
+fn has_word(text: &str, word: &str) -> bool {
+    let part = |c: char| c.is_alphanumeric() || c == '_';
+    text.match_indices(word).any(|(i, _)| {
+        !text[..i].chars().next_back().is_some_and(part)
+            && !text[i + word.len()..].chars().next().is_some_and(part)
+    })
+}
+
+/// Every name of `m` that counts as naming it in `code` (the variant, the module path, the
+/// registry name, …), as found.
+fn names_in(m: ShadingModel, code: &str) -> Vec<String> {
+    let d = m.descriptor();
+    let variant = format!("{m:?}");
+    let mut found = Vec::new();
+    let path = format!("ShadingModel::{variant}");
+    if code
+        .match_indices(&path)
+        .any(|(i, _)| !code[i + path.len()..].starts_with(char::is_alphanumeric))
+    {
+        found.push(variant.clone());
+    }
+    // The paper's closed-form models share analytic functions (Ward's lobe in OSS, the
+    // dipole's R_d as Ward's diffuse, their nondimensional kernels in the conformance suite),
+    // and the spatial models the `subsurface` module (their uniform and kernel, the
+    // screen-space models' WGSL); every other model's module path names it too.
+    let shares_code = ["ward", "dipole", "oss", "subsurface"].contains(&d.module);
+    let module = format!("{}::", d.module);
+    if !shares_code
+        && code
+            .match_indices(&module)
+            .any(|(i, _)| !code[..i].ends_with(|c: char| c.is_alphanumeric() || c == '_'))
+    {
+        found.push(d.module.to_string());
+    }
+    if !CONCEPTS.contains(&d.name) {
+        // (The composition flag a descriptor declares, e.g. `WARD_PRINTED`, is what it hands
+        // the composer: a shared module may read it.)
+        let upper = d.name.to_uppercase().replace('-', "_");
+        let upper = Some(upper.as_str()).filter(|u| d.variant != Some(*u));
+        for word in [Some(d.name), Some(variant.as_str()), upper]
+            .into_iter()
+            .flatten()
+        {
+            if has_word(code, word) && !found.iter().any(|f| f == word) {
+                found.push(word.to_string());
+            }
+        }
+    }
+    found
+}
+
+/// The tracked Rust and WGSL sources outside the tests, comments included (an inline unit
+/// test, after `#[cfg(test)]`, may name what it tests).
+fn sources() -> Vec<(String, String)> {
     let files = Command::new("git")
-        .args(["ls-files", "*.rs"])
+        .args(["ls-files", "*.rs", "*.wgsl"])
         .current_dir(root())
         .output()
         .expect("git");
     let files = String::from_utf8_lossy(&files.stdout);
-    let sources: Vec<(&str, String)> = files
+    files
         .lines()
         .filter(|f| !f.starts_with("tests/") && !f.contains("/tests/") && !f.ends_with("tests.rs"))
         .map(|f| {
             let text = std::fs::read_to_string(root().join(f)).unwrap_or_default();
-            // Inline unit tests may name what they test.
             let code = text.split("#[cfg(test)]").next().unwrap_or("").to_string();
-            (f, code)
+            (f.to_string(), code)
         })
-        .collect();
-    assert!(
-        sources.len() > 50,
-        "git ls-files found {} sources",
-        sources.len()
-    );
+        .collect()
+}
+
+/// Every mention of a model outside its own files (its Rust file, its module's Rust and WGSL
+/// files, the registry's rows) and the named exceptions: `"file names key"`.
+fn mentions(sources: &[(String, String)]) -> Vec<String> {
     let mut found = Vec::new();
     for m in ShadingModel::ALL {
         let d = m.descriptor();
         let own = |f: &str| {
             f == format!("engine/src/shading/{}.rs", d.module)
                 || f == format!("engine/src/shading/{}.rs", d.name)
+                || f == format!("shaders/{}.wgsl", d.module)
                 || f == "engine/src/shading/mod.rs"
         };
-        let variant = format!("ShadingModel::{m:?}");
-        // The paper's closed-form models share analytic functions (Ward's lobe in OSS, the
-        // dipole's R_d as Ward's diffuse, their nondimensional kernels in the conformance
-        // suite), and the spatial models the `subsurface` module (their uniform and kernel,
-        // the screen-space models' WGSL); every other model's module path names it too.
-        let shares_code = ["ward", "dipole", "oss", "subsurface"].contains(&d.module);
-        let path = format!("{}::", d.module);
-        for (f, code) in &sources {
+        for (f, code) in sources {
             if own(f) {
                 continue;
             }
-            let names_variant = code
-                .match_indices(&variant)
-                .any(|(i, _)| !code[i + variant.len()..].starts_with(char::is_alphanumeric));
-            let names_module = !shares_code
-                && code
-                    .match_indices(&path)
-                    .any(|(i, _)| !code[..i].ends_with(|c: char| c.is_alphanumeric() || c == '_'));
-            if names_variant || names_module {
-                let key = if names_variant {
-                    format!("{m:?}")
-                } else {
-                    d.module.to_string()
-                };
-                if !EXCEPTIONS.iter().any(|(ef, ek, _)| ef == f && *ek == key) {
-                    found.push(format!("{f} names {key}"));
+            for key in names_in(m, code) {
+                let excepted = EXCEPTIONS.iter().any(|(ef, ek, _)| ef == f && *ek == key);
+                let line = format!("{f} names {key}");
+                if !excepted && !found.contains(&line) {
+                    found.push(line);
                 }
             }
         }
     }
+    found
+}
+
+#[test]
+fn no_source_outside_a_models_place_names_it() {
+    let sources = sources();
+    assert!(
+        sources.len() > 50,
+        "git ls-files found {} sources",
+        sources.len()
+    );
+    let found = mentions(&sources);
     assert!(
         found.is_empty(),
         "models named outside their place: {found:#?}"
@@ -213,8 +276,41 @@ fn no_source_outside_a_models_place_names_it() {
     for (f, key, why) in EXCEPTIONS {
         let code = &sources.iter().find(|(s, _)| s == f).expect(f).1;
         assert!(
-            code.contains(&format!("ShadingModel::{key}")) || code.contains(&format!("{key}::")),
+            ShadingModel::ALL
+                .iter()
+                .any(|m| names_in(*m, code).iter().any(|k| k == key)),
             "{f}: exception for {key} ({why}) no longer needed"
         );
     }
+}
+
+#[test]
+fn a_new_mention_anywhere_is_caught() {
+    // In code, in a comment, in a shader, by any of a model's names: each planted mention of
+    // the default model (whose name is its own) in a file outside its place is found.
+    let d = ShadingModel::DEFAULT.descriptor();
+    assert!(!CONCEPTS.contains(&d.name), "{}", d.name);
+    let variant = format!("{:?}", ShadingModel::DEFAULT);
+    for (file, text) in [
+        (
+            "engine/src/render/renderer.rs",
+            format!("let m = ShadingModel::{variant};"),
+        ),
+        (
+            "engine/src/shader/consts.rs",
+            format!("// the LUT of `{}`", d.name),
+        ),
+        ("shaders/common.wgsl", format!("// as {} needs it", d.name)),
+        (
+            "src/cmd/pareto.rs",
+            format!("row(\"{}\", 0.1, 2.0)", d.name),
+        ),
+    ] {
+        let planted = [(file.to_string(), text.clone())];
+        assert_eq!(mentions(&planted).len(), 1, "{file}: {text}");
+    }
+    // A word that only contains a name is not one.
+    assert!(!has_word(&format!("x_{}", d.name), d.name));
+    assert!(!has_word(&format!("{}s", d.name), d.name));
+    assert!(has_word(&format!("`{}`-style", d.name), d.name));
 }

@@ -1,6 +1,6 @@
-//! Curvature per vertex, computed at load from the mesh's positions and normals: what the
-//! pre-integrated skin model reads as the radius of the sphere it takes the surface for, in
-//! the direction the light crosses it.
+//! Curvature per vertex, computed at load from the mesh's positions and normals: what a
+//! model that takes the surface for a sphere (one that samples a LUT over curvature) reads as
+//! the sphere's radius, in the direction the light crosses it.
 //!
 //! Each triangle's shape operator is the gradient of its interpolated normal: with edges
 //! e₁, e₂ and normal differences d₁, d₂ from its first vertex, S maps eᵢ to dᵢ, so

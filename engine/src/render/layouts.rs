@@ -94,7 +94,7 @@ impl Layouts {
                 let [map, sampler, penumbra] = shadow_map_entries(wgpu::ShaderStages::FRAGMENT);
                 [uniform(0, vf), map, sampler, penumbra]
             }),
-            // The model's uniform and, for pre-integrated models, their LUT.
+            // The model's uniform and, for models that sample a LUT, their LUT.
             model: make(
                 "shading model",
                 &[

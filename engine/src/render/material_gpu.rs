@@ -1,6 +1,7 @@
-//! A glTF material on the GPU: its constants ([`MaterialUniform`], `MaterialUniform` in
-//! `shaders/material.wgsl`) and its textures — base colour (a skin's albedo), normal,
-//! metallic-roughness, occlusion, emissive — bound as one group with the textures' sampler.
+//! A glTF material on the GPU: its constants ([`MaterialUniform`], declared in
+//! `shader/uniforms.rs`, read by `shaders/material.wgsl`) and its textures — base colour (a
+//! skin's albedo), normal, metallic-roughness, occlusion, emissive — bound as one group with
+//! the textures' sampler.
 //! A texture the material lacks is a 1×1 stand-in that leaves the factor as it is. Skinned
 //! subjects bind it at group 3, props at group 1 (one layout, `Layouts::material`).
 
@@ -8,29 +9,7 @@ use super::layouts::Layouts;
 use super::texture;
 use crate::asset::{AlphaMode, Material, Model};
 use crate::scene::Role;
-
-crate::shading::uniform::gpu_struct! {
-/// A material's constants (`MaterialUniform` in `material.wgsl`, member for member).
-pub struct MaterialUniform {
-    /// Linear RGBA: the base colour factor; for skin, the albedo's factor (rgb).
-    pub base_color: [f32; 4],
-    /// Linear emission (factor × strength).
-    pub emissive: [f32; 3],
-    pub metallic: f32,
-    pub roughness: f32,
-    /// Scales the normal map's x and y.
-    pub normal_scale: f32,
-    /// 1 + strength · (occlusion − 1).
-    pub occlusion_strength: f32,
-    /// Alpha below which a MASK material is absent (0: not masked).
-    pub alpha_cutoff: f32,
-    /// 1: the albedo is the skin's pigment per texel; 0: the medium's own (no pigment).
-    pub pigmented: u32,
-    pub _pad0: u32,
-    pub _pad1: u32,
-    pub _pad2: u32,
-}
-}
+use crate::shader::uniforms::MaterialUniform;
 
 impl MaterialUniform {
     /// The constants of `material` drawn as `role`; `None`: a primitive without a material

@@ -19,7 +19,7 @@ pub struct ModelGpu {
     /// Its character pipelines, indexed by "the mesh has a normal map".
     pipelines: [Option<wgpu::RenderPipeline>; 2],
     params: wgpu::Buffer,
-    /// The pre-integrated models' LUT.
+    /// The LUT of a model that samples one (`Effects::lut`).
     lut: Option<wgpu::Texture>,
     /// The uniform and the LUT (or a 1×1 stand-in), bound as group 1.
     group: wgpu::BindGroup,

@@ -4,10 +4,12 @@
 //! `shaders/` (embedded at compile time, so no file is read at run time; the shared modules
 //! are listed in `sources.rs`, each shading model's comes with its descriptor):
 //!
-//! * `#import name` inlines module `name` (`shaders/name.wgsl`; `consts`: the constants
-//!   shared with Rust, generated from the Rust values by `consts.rs`) once per composed shader;
-//!   a name can be an *alias* bound by the caller (the character shader imports
-//!   `shading_model`, bound to `ward`, `dipole`, `oss`, … per pipeline);
+//! * `#import name` inlines module `name` once per composed shader: `shaders/name.wgsl`, or a
+//!   module generated from a Rust declaration — `consts`, the constants shared with Rust
+//!   (`consts.rs`), and one per struct the GPU reads, named after it (`#import FrameUniform`:
+//!   `structs.rs` writes it from the `gpu_struct!` / `model_uniform!` declaration); a name can
+//!   be an *alias* bound by the caller (the character shader imports `shading_model`, bound
+//!   to `ward`, `dipole`, `oss`, … per pipeline);
 //! * `#ifdef FLAG` / `#ifndef FLAG` / `#else` / `#endif` keep or drop lines by the caller's
 //!   flags (effect variants), nesting allowed.
 //!
@@ -17,6 +19,8 @@
 mod compose;
 pub mod consts;
 mod sources;
+pub mod structs;
+pub mod uniforms;
 
 pub use compose::{compose, compose_from, ComposeError, ShaderDefs};
 pub use sources::{module_source, modules, SHARED};

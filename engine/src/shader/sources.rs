@@ -1,5 +1,6 @@
-//! The WGSL modules, embedded from `shaders/` at compile time: the shared ones listed here,
-//! and each shading model's own, which its descriptor carries (`shading/<model>.rs`).
+//! The WGSL modules: the ones generated from Rust declarations (`consts.rs`, `structs.rs`),
+//! and those embedded from `shaders/` at compile time — the shared ones listed here, and
+//! each shading model's own, which its descriptor carries (`shading/<model>.rs`).
 
 use std::sync::OnceLock;
 
@@ -9,6 +10,11 @@ use crate::shading::ShadingModel;
 /// `(name, source)` of every shared module (not a shading model's).
 pub const SHARED: &[(&str, &str)] = &[
     ("common", include_str!("../../../shaders/common.wgsl")),
+    (
+        "fullscreen",
+        include_str!("../../../shaders/fullscreen.wgsl"),
+    ),
+    ("split_out", include_str!("../../../shaders/split_out.wgsl")),
     ("skinning", include_str!("../../../shaders/skinning.wgsl")),
     ("real", include_str!("../../../shaders/real.wgsl")),
     ("ward_nd", include_str!("../../../shaders/ward_nd.wgsl")),
@@ -35,14 +41,21 @@ pub const SHARED: &[(&str, &str)] = &[
     ),
 ];
 
-/// `(name, source)` of every module the composer can import: the generated `consts`
-/// (`consts.rs`), [`SHARED`], then each registered model's module (once, for models that
-/// share a file).
+/// `(name, source)` of every module the composer can import: the generated ones — `consts`
+/// (`consts.rs`) and one per shared struct (`structs.rs`), named after it —, [`SHARED`], then
+/// each registered model's module (once, for models that share a file).
 pub fn modules() -> &'static [(&'static str, &'static str)] {
-    static CONSTS: OnceLock<String> = OnceLock::new();
+    static GENERATED: OnceLock<Vec<(&str, String)>> = OnceLock::new();
     static ALL: OnceLock<Vec<(&str, &str)>> = OnceLock::new();
     ALL.get_or_init(|| {
-        let mut all = vec![("consts", CONSTS.get_or_init(super::consts::wgsl).as_str())];
+        let generated = GENERATED.get_or_init(|| {
+            let structs = super::structs::table();
+            let structs = structs.iter().map(|l| (l.name, super::structs::wgsl(l)));
+            std::iter::once(("consts", super::consts::wgsl()))
+                .chain(structs)
+                .collect()
+        });
+        let mut all: Vec<(&str, &str)> = generated.iter().map(|(n, s)| (*n, s.as_str())).collect();
         all.extend_from_slice(SHARED);
         for m in ShadingModel::ALL {
             let d = m.descriptor();

@@ -86,7 +86,8 @@ pub fn params(m: &Material) -> Params {
     }
 }
 
-/// The ring masses: exact integrals of the profile over the same rings as the tabulated kernel.
+/// The ring masses: exact integrals of the profile over the same rings as the measured
+/// kernel's ([`bake::ring_edges`]).
 pub fn kernel(m: &Material) -> Kernel {
     let p = Profile::new(m);
     let edges = bake::ring_edges(m);

@@ -15,7 +15,7 @@ use super::{fresnel, units, Descriptor, Effects, Material};
 use glam::DVec3;
 
 model_uniform! {
-    /// What `dipole.wgsl` reads (its `DipoleUniform`, member for member).
+    /// What `dipole.wgsl` reads (`#import DipoleUniform`, generated from this declaration).
     pub struct DipoleUniform {
         /// σ_tr (mm⁻¹).
         pub sigma_tr: [f32; 3],
@@ -208,6 +208,7 @@ pub const DIPOLE: Descriptor = Descriptor {
     probe: |p, _, x| profile_packed(p, false, x),
     probe_wgsl: "dipole_profile(x)",
     total_reflectance: |m, _| total_reflectance(m),
+    consts: &[],
 };
 
 /// `dipole-printed`: eq. 3 as printed.

@@ -2,8 +2,8 @@
 //! returns at signed distance d (mm) from a straight shadow edge (d > 0 on the lit side),
 //! relative to the fully lit medium. Exitance there is the kernel integrated over the lit
 //! half-plane, ESF(d) = ∫_{x < d} LSF(x) dx / ∫ LSF, so the shadow bleeds as far as the
-//! material carries light. `preintegrated` reads it from a row of its LUT, indexed by the
-//! distance the penumbra map gives (`render/passes/penumbra.rs`).
+//! material carries light. A model with the `penumbra` effect reads it from a row of its LUT,
+//! indexed by the distance the penumbra map gives (`render/passes/penumbra.rs`).
 
 use super::bake::Bake;
 

@@ -31,7 +31,9 @@ pub mod ward;
 pub use material::Material;
 pub use preintegrated::Lut;
 pub use registry::{Descriptor, Effects};
-pub use uniform::{Field, Layout, ModelParams, Uniform, MODEL_PARAM_ROWS};
+pub use uniform::{
+    Const, Field, GpuType, Layout, ModelParams, SharedConst, Uniform, WgslType, MODEL_PARAM_ROWS,
+};
 
 registry::models! {
     default: Preintegrated;

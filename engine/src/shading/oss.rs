@@ -28,7 +28,7 @@ use super::{fresnel, units, ward, Descriptor, Effects, Material};
 use glam::DVec3;
 
 model_uniform! {
-    /// What `oss.wgsl` reads (its `OssUniform`, member for member).
+    /// What `oss.wgsl` reads (`#import OssUniform`, generated from this declaration).
     pub struct OssUniform {
         /// f_d = c0 + c1 d + c2 d² + c3 d³ per channel (printed form).
         pub c0: [f32; 3],
@@ -241,6 +241,7 @@ pub const OSS: Descriptor = Descriptor {
     probe: |p, _, x| colour_packed(p, false, x),
     probe_wgsl: "oss_colour(x)",
     total_reflectance: |m, slab| super::prediction::oss(m, slab, false),
+    consts: &[],
 };
 
 /// `oss-stable`: eq. 5's terms positive and bounded.

@@ -21,6 +21,7 @@ use std::sync::{Arc, Mutex, OnceLock};
 
 use super::bake::{self, Bake, Budget};
 use super::subsurface::{self, Params, LUT_R0_MM};
+use super::uniform::{Const, SharedConst};
 use super::{Descriptor, Effects, Material};
 
 /// LUT size: n·l × curvature …
@@ -208,6 +209,35 @@ pub fn params_from(b: &Bake, m: &Material) -> Params {
     }
 }
 
+/// The LUT's layout as its shader reads it (`preintegrated.wgsl`, through `consts`).
+const SHADER_CONSTS: &[SharedConst] = &[
+    SharedConst {
+        name: "LUT_U",
+        value: Const::F32(LUT_U as f32),
+        doc: "texels per row of the LUT (LUT_U)",
+    },
+    SharedConst {
+        name: "LUT_CURVATURE_ROWS",
+        value: Const::F32(LUT_V as f32),
+        doc: "the LUT's sphere rows over curvature (LUT_V)",
+    },
+    SharedConst {
+        name: "LUT_TEXTURE_ROWS",
+        value: Const::F32(TEXTURE_ROWS as f32),
+        doc: "rows of the LUT texture (TEXTURE_ROWS)",
+    },
+    SharedConst {
+        name: "LUT_PENUMBRA_ROW",
+        value: Const::F32(PENUMBRA_ROW as f32),
+        doc: "the LUT's edge-spread row (PENUMBRA_ROW)",
+    },
+    SharedConst {
+        name: "LUT_SLAB_SPAN",
+        value: Const::F32(SLAB_SPAN as f32),
+        doc: "doublings of thickness the LUT's slab row spans (SLAB_SPAN)",
+    },
+];
+
 /// `preintegrated`.
 pub const PREINTEGRATED: Descriptor = Descriptor {
     name: "preintegrated",
@@ -227,5 +257,6 @@ pub const PREINTEGRATED: Descriptor = Descriptor {
     kernel: None,
     lut: Some(lut),
     total_reflectance: |m, _| super::prediction::measured(m),
+    consts: SHADER_CONSTS,
     ..subsurface::SPATIAL
 };

@@ -11,7 +11,7 @@ use glam::DVec3;
 use super::bake::Bake;
 use super::pixel::Pixel;
 use super::subsurface::Kernel;
-use super::uniform::{Layout, ModelParams};
+use super::uniform::{Layout, ModelParams, SharedConst};
 use super::{Lut, Material, ShadingModel};
 
 /// Declares the models: `default: Variant; baseline: Variant;` then one row per model,
@@ -61,7 +61,7 @@ pub struct Effects {
     /// The screen-space subsurface pass spreads the model's irradiance (its frames render
     /// linear radiance into two targets and end with `sss_pass.wgsl`).
     pub screen_space: bool,
-    /// The model samples a pre-integrated LUT (bound next to its uniform).
+    /// The model samples a LUT (bound next to its uniform).
     pub lut: bool,
     /// The model filters the key light's shadow by its diffusion profile, reading the
     /// distance to the nearest shadow edge from the penumbra map (its frames with a shadow
@@ -97,9 +97,9 @@ pub struct Descriptor {
     /// What its shader computes.
     pub effects: Effects,
     /// Its uniform struct, declared once with `model_uniform!` in its Rust file (the struct
-    /// `params` packs and `shade`/`probe` read); the WGSL struct bound at `@group(1)
-    /// @binding(0)` by its module (or a module it imports) declares the same members in the
-    /// same order (`engine/tests/engine/uniform_layout.rs` compares the two with naga).
+    /// `params` packs and `shade`/`probe` read); its module (or a module it imports) imports
+    /// the generated WGSL struct of that name and binds it at `@group(1) @binding(0)`
+    /// (`engine/tests/engine/uniform_layout.rs` checks both with naga).
     pub uniform: Layout,
     /// CPU-side precompute of the uniform for a material.
     pub params: fn(&Material) -> ModelParams,
@@ -107,7 +107,7 @@ pub struct Descriptor {
     pub params_from: Option<fn(&Bake, &Material) -> ModelParams>,
     /// The kernel the screen-space pass spreads its irradiance with (screen-space models).
     pub kernel: Option<fn(&Material) -> Kernel>,
-    /// The pre-integrated LUT it samples (LUT models).
+    /// The LUT it samples (LUT models).
     pub lut: Option<fn(&Material) -> Arc<Lut>>,
     /// f64 reference of the shader's `shade` (LUT models: the flat-ground limit without it).
     pub shade: fn(&ModelParams, &Pixel) -> DVec3,
@@ -120,6 +120,9 @@ pub struct Descriptor {
     /// Its prediction of the total diffuse reflectance, semi-infinite (None) or of a slab
     /// (mm) — `dermis sss`.
     pub total_reflectance: fn(&Material, Option<f64>) -> [f64; 3],
+    /// The constants its shader reads beyond the shared ones (a LUT's layout), declared in
+    /// its Rust file: the composer's generated module `consts` holds them.
+    pub consts: &'static [SharedConst],
 }
 
 impl ShadingModel {
@@ -182,7 +185,7 @@ impl ShadingModel {
         self.descriptor().kernel.map(|k| k(material))
     }
 
-    /// The pre-integrated LUT this model samples.
+    /// The LUT this model samples.
     pub fn lut(self, material: &Material) -> Option<Arc<Lut>> {
         self.descriptor().lut.map(|l| l(material))
     }

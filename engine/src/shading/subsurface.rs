@@ -1,4 +1,4 @@
-//! Shared by the spatial subsurface models `tabulated`, `burley` and `preintegrated`
+//! Shared by the spatial subsurface models, those whose descriptor starts from [`SPATIAL`]
 //! (WGSL: `shaders/subsurface.wgsl`): their one uniform layout, the diffusion kernel the
 //! screen-space pass spreads irradiance with, and the f64 twins of the per-pixel split.
 //!
@@ -12,8 +12,9 @@ use glam::DVec3;
 
 use super::bake::{OBLIQUE_NODES, SLAB_FIRST_MM, SLAB_NODES};
 use super::pixel::Pixel;
-use super::uniform::{f32x3, gpu_struct, model_uniform, rgb, ModelParams, Uniform};
+use super::uniform::{f32x3, model_uniform, rgb, ModelParams, Uniform};
 use super::{fresnel, units, Descriptor, Effects};
+use crate::gpu_struct;
 
 /// Rings the screen-space pass can take (`MAX_RINGS` in `sss_pass.wgsl`).
 pub const MAX_RINGS: usize = 24;
@@ -99,8 +100,7 @@ impl Kernel {
 }
 
 gpu_struct! {
-    /// What `sss_pass.wgsl` reads at `@group(1) @binding(0)` (its `KernelUniform`, member for
-    /// member).
+    /// What `sss_pass.wgsl` reads at `@group(1) @binding(0)`.
     pub struct KernelUniform {
         /// Rings used.
         pub ring_count: u32,
@@ -121,19 +121,20 @@ gpu_struct! {
     }
 }
 
-/// One ring of the kernel as the subsurface pass reads it (`Ring` in `sss_pass.wgsl`).
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
-pub struct Ring {
-    /// Its mass per channel.
-    pub mass: [f32; 3],
-    /// Its outer radius (mm).
-    pub outer_mm: f32,
+gpu_struct! {
+    /// One ring of the kernel as the subsurface pass reads it.
+    #[derive(Default)]
+    pub struct Ring {
+        /// Its mass per channel.
+        pub mass: [f32; 3],
+        /// Its outer radius (mm).
+        pub outer_mm: f32,
+    }
 }
 
 model_uniform! {
-    /// What `subsurface.wgsl` reads (its `SubsurfaceUniform`, member for member): the one
-    /// uniform of the spatial models `tabulated`, `burley` and `preintegrated`.
+    /// What `subsurface.wgsl` reads: the one uniform of the spatial models (those whose
+    /// descriptor starts from [`SPATIAL`]).
     pub struct SubsurfaceUniform {
         /// Diffuse reflectance of the medium at normal incidence per incident power.
         pub albedo: [f32; 3],
@@ -147,7 +148,7 @@ model_uniform! {
         pub mm_per_m: f32,
         /// The pre-integration LUT's curvature scale R0 (mm).
         pub lut_r0_mm: f32,
-        /// Height (mm) the light is lifted by (preintegrated).
+        /// Height (mm) the light is lifted by (models that sample a LUT).
         pub lift: [f32; 3],
         /// 1 for models with translucency (read by the f64 twin).
         pub translucent: f32,
@@ -177,7 +178,7 @@ pub struct Params {
     pub shift: [[f64; 3]; OBLIQUE_NODES],
     /// Diffuse transmittance of slabs SLAB_FIRST_MM · 2^k thick; `None`: no translucency.
     pub slab: Option<[[f64; 3]; SLAB_NODES]>,
-    /// Height (mm) the light is lifted by (pre-integrated model), per channel.
+    /// Height (mm) the light is lifted by (models that sample a LUT), per channel.
     pub lift: [f64; 3],
 }
 
@@ -405,6 +406,7 @@ pub const SPATIAL: Descriptor = Descriptor {
     probe: |p, _, x| oblique_packed(p, x / (1.0 + x)),
     probe_wgsl: "sss_oblique(x / (1.0 + x))",
     total_reflectance: |_, _| [0.0; 3],
+    consts: &[],
 };
 
 #[cfg(test)]
@@ -421,8 +423,13 @@ mod tests {
 
     #[test]
     fn light_from_behind_crosses_a_curved_parts_chord_and_a_flat_parts_slab() {
-        use crate::shading::{material::SKIN1, tabulated};
-        let pm = tabulated::params(&SKIN1).pack();
+        use crate::shading::{material::SKIN1, ShadingModel};
+        // A model whose whole shader is this module's, with translucency (by its effects).
+        let model = ShadingModel::ALL
+            .into_iter()
+            .find(|m| m.effects().screen_space && m.effects().translucency)
+            .expect("a translucent screen-space model");
+        let pm = model.params(&SKIN1);
         // What stays at a pixel lit from behind at −n·l = `back` (no ambient): translucency.
         let through = |thickness_m: f64, radius_m: f64, back: f64| {
             let l = DVec3::new((1.0 - back * back).sqrt(), 0.0, -back);

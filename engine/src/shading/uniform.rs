@@ -1,13 +1,16 @@
-//! The uniform block every model's shader reads at `@group(1) @binding(0)`, and the one
-//! declaration of each model's layout inside it.
+//! What the GPU reads, declared once in Rust: the structs (`gpu_struct!`), the uniform block
+//! every model's shader reads at `@group(1) @binding(0)` with each model's layout inside it
+//! (`model_uniform!`), and the constants the shaders share ([`SharedConst`]).
 //!
-//! Each model declares its uniform once, with `model_uniform!` in its own
-//! Rust file (`ward::WardUniform`, `dipole::DipoleUniform`, `oss::OssUniform`,
-//! `subsurface::SubsurfaceUniform`): `Params::pack` fills it by field name, the f64 references
-//! read it back by field name ([`ModelParams::uniform`]), and the WGSL struct of the same name
-//! declares the same members in the same order. The macro records the Rust layout
-//! ([`Uniform::LAYOUT`], also each registry row's `uniform`); `engine/tests/engine/uniform_layout.rs`
-//! checks it against the WGSL struct naga parses from the model's composed shader.
+//! The WGSL side is generated from these declarations, never written by hand: the composer
+//! serves each struct as a module of its name (`#import WardUniform`, text by
+//! `shader::structs`) and the constants as module `consts` (`shader::consts`). Each model
+//! declares its uniform once, with `model_uniform!` in its own Rust file
+//! (`ward::WardUniform`, `dipole::DipoleUniform`, `oss::OssUniform`,
+//! `subsurface::SubsurfaceUniform`): `Params::pack` fills it by field name, the f64
+//! references read it back by field name ([`ModelParams::uniform`]), and its shader binds the
+//! generated struct. `engine/tests/engine/uniform_layout.rs` checks every generated struct as
+//! naga lays it out against the Rust layout recorded here.
 
 use glam::DVec3;
 
@@ -39,60 +42,155 @@ impl ModelParams {
     }
 }
 
-/// One member of a model's uniform struct: its name (the same in Rust and WGSL), byte offset
-/// and size.
+/// The WGSL type of a member of a GPU struct: an element type, or an array of them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct WgslType {
+    /// The element type as WGSL spells it (`f32`, `vec3<f32>`, `mat4x4<f32>`, or the name of
+    /// a struct declared with `gpu_struct!`).
+    pub name: &'static str,
+    /// `Some(n)`: `array<name, n>`.
+    pub array: Option<usize>,
+    /// The element is a struct declared with `gpu_struct!` (its module is imported first).
+    pub declared: bool,
+}
+
+impl WgslType {
+    const fn plain(name: &'static str) -> Self {
+        Self {
+            name,
+            array: None,
+            declared: false,
+        }
+    }
+}
+
+/// A Rust type a GPU struct's member may have, with the WGSL type it is: `f32`, `u32`,
+/// `[f32; 3]` (`vec3<f32>`, followed by a scalar that fills its 16 bytes), `[f32; 4]`
+/// (`vec4<f32>`), [`glam::Mat4`] (`mat4x4<f32>`), `[[f32; 4]; N]` (`array<vec4<f32>, N>`) and
+/// `[S; N]` of a struct `S` declared with `gpu_struct!` (`array<S, N>`).
+pub trait GpuType {
+    const WGSL: WgslType;
+}
+
+impl GpuType for f32 {
+    const WGSL: WgslType = WgslType::plain("f32");
+}
+
+impl GpuType for u32 {
+    const WGSL: WgslType = WgslType::plain("u32");
+}
+
+impl GpuType for [f32; 3] {
+    const WGSL: WgslType = WgslType::plain("vec3<f32>");
+}
+
+impl GpuType for [f32; 4] {
+    const WGSL: WgslType = WgslType::plain("vec4<f32>");
+}
+
+impl GpuType for glam::Mat4 {
+    const WGSL: WgslType = WgslType::plain("mat4x4<f32>");
+}
+
+impl<const N: usize> GpuType for [[f32; 4]; N] {
+    const WGSL: WgslType = WgslType {
+        name: "vec4<f32>",
+        array: Some(N),
+        declared: false,
+    };
+}
+
+impl<S: Uniform, const N: usize> GpuType for [S; N] {
+    const WGSL: WgslType = WgslType {
+        name: S::LAYOUT.name,
+        array: Some(N),
+        declared: true,
+    };
+}
+
+/// One member of a GPU struct: its name (the same in Rust and WGSL), byte offset, size, WGSL
+/// type and doc comment.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Field {
     pub name: &'static str,
     pub offset: usize,
     pub size: usize,
+    pub ty: WgslType,
+    /// Its Rust doc comment, one line per `///` line (empty: none).
+    pub doc: &'static str,
 }
 
-/// A model's uniform struct as declared in Rust: its name (the WGSL struct's too), size in
-/// bytes and members in order.
+/// A GPU struct as declared in Rust: its name (the WGSL struct's too), the file declaring
+/// it, size in bytes and members in order.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Layout {
     pub name: &'static str,
+    pub file: &'static str,
     pub size: usize,
     pub fields: &'static [Field],
 }
 
-/// A model's uniform struct, declared with `model_uniform!`.
+/// A struct the GPU reads, declared with `gpu_struct!` (or `model_uniform!`).
 pub trait Uniform: bytemuck::Pod {
     /// Its layout, member by member.
     const LAYOUT: Layout;
 }
 
+/// A value a shared constant has in WGSL.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Const {
+    U32(u32),
+    F32(f32),
+    /// An abstract float: it takes the type of its use (`f32`, or `f16` in the `*_nd`
+    /// modules composed at half precision).
+    Float(f64),
+}
+
+/// A constant the shaders share with Rust, declared once in Rust: its WGSL name, its value
+/// (from the Rust constant) and what it is. The shared ones are listed in `shader::consts`, a
+/// model's own in its descriptor (`Descriptor::consts`); all reach the shaders through the
+/// generated module `consts`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SharedConst {
+    pub name: &'static str,
+    pub value: Const,
+    pub doc: &'static str,
+}
+
 /// Declares a struct the GPU reads, once: `#[repr(C)]`, `Pod`, with its [`Layout`] recorded
-/// (`Uniform::LAYOUT`), so a test compares it with the WGSL struct of the same name as naga
-/// lays it out (`engine/tests/engine/uniform_layout.rs`: the models' uniforms, the frame uniform, the
-/// subsurface pass's kernel). Members are f32 scalars, `[f32; 3]` (a WGSL `vec3<f32>`,
-/// followed by a scalar that fills its 16 bytes), `[f32; 4]`, `[[f32; 4]; 4]` (`mat4x4<f32>`)
-/// and `[[f32; 4]; N]` (`array<vec4<f32>, N>`); padding is spelled out as members named
-/// `_pad*`, declared on the WGSL side too. The size must be a multiple of 16 bytes (WGSL
-/// rounds a struct up to its 16-byte alignment).
+/// (`Uniform::LAYOUT`), from which `shader::structs` writes the WGSL struct of the same name,
+/// member docs included (members may carry doc comments only). Members are the [`GpuType`]s;
+/// padding is spelled out as members named `_pad*`, and each member must sit where WGSL's
+/// layout rules put it (a `vec3<f32>` on 16 bytes: `engine/tests/engine/uniform_layout.rs`
+/// checks each generated struct as naga lays it out). The size must be a multiple of 16 bytes
+/// (WGSL rounds a struct up to its 16-byte alignment). Exported (`dermis_engine::gpu_struct!`)
+/// for the measurement crate's compute kernels.
+#[macro_export]
 macro_rules! gpu_struct {
     (
         $(#[$meta:meta])*
         pub struct $name:ident {
-            $( $(#[$fmeta:meta])* pub $field:ident : $ty:ty ),* $(,)?
+            $( $(#[doc = $doc:literal])* pub $field:ident : $ty:ty ),* $(,)?
         }
     ) => {
         $(#[$meta])*
         #[repr(C)]
         #[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
         pub struct $name {
-            $( $(#[$fmeta])* pub $field: $ty ),*
+            $( $(#[doc = $doc])* pub $field: $ty ),*
         }
 
-        impl $crate::shading::uniform::Uniform for $name {
-            const LAYOUT: $crate::shading::uniform::Layout = $crate::shading::uniform::Layout {
+        impl $crate::shading::Uniform for $name {
+            const LAYOUT: $crate::shading::Layout = $crate::shading::Layout {
                 name: stringify!($name),
+                file: file!(),
                 size: std::mem::size_of::<$name>(),
-                fields: &[$($crate::shading::uniform::Field {
+                fields: &[$($crate::shading::Field {
                     name: stringify!($field),
                     offset: std::mem::offset_of!($name, $field),
                     size: std::mem::size_of::<$ty>(),
+                    ty: <$ty as $crate::shading::GpuType>::WGSL,
+                    doc: concat!($($doc, "\n"),*),
                 }),*],
             };
         }
@@ -103,7 +201,6 @@ macro_rules! gpu_struct {
         );
     };
 }
-pub(crate) use gpu_struct;
 
 /// Declares a model's uniform struct ([`gpu_struct!`]) that fits in [`ModelParams`].
 macro_rules! model_uniform {
@@ -111,7 +208,7 @@ macro_rules! model_uniform {
         $(#[$meta:meta])*
         pub struct $name:ident { $($body:tt)* }
     ) => {
-        $crate::shading::uniform::gpu_struct! {
+        $crate::gpu_struct! {
             $(#[$meta])*
             pub struct $name { $($body)* }
         }
@@ -142,6 +239,8 @@ mod tests {
     model_uniform! {
         /// A test layout.
         pub struct TestUniform {
+            /// Its first member,
+            /// over two lines.
             pub a: [f32; 3],
             pub b: f32,
             pub table: [[f32; 4]; 2],
@@ -152,6 +251,7 @@ mod tests {
     fn layout_is_recorded_and_the_block_round_trips() {
         let l = TestUniform::LAYOUT;
         assert_eq!(l.name, "TestUniform");
+        assert!(l.file.ends_with("uniform.rs"), "{}", l.file);
         assert_eq!(l.size, 48);
         let got: Vec<_> = l
             .fields
@@ -159,6 +259,13 @@ mod tests {
             .map(|f| (f.name, f.offset, f.size))
             .collect();
         assert_eq!(got, [("a", 0, 12), ("b", 12, 4), ("table", 16, 32)]);
+        let types: Vec<_> = l.fields.iter().map(|f| (f.ty.name, f.ty.array)).collect();
+        assert_eq!(
+            types,
+            [("vec3<f32>", None), ("f32", None), ("vec4<f32>", Some(2))]
+        );
+        assert_eq!(l.fields[0].doc, " Its first member,\n over two lines.\n");
+        assert_eq!(l.fields[1].doc, "");
         let u = TestUniform {
             a: [1.0, 2.0, 3.0],
             b: 4.0,

@@ -22,7 +22,7 @@ pub const DIPOLE_AREA_MM2: f64 = 16.0;
 /// OSS (eq. 5): the depth d [mm] = vertex thickness [m] × `MM_PER_M` × this. Limbs 0.07–0.11 m
 /// thick map to 0.9–1.3 mm, where eq. 5's colour is skin-red; the printed polynomial turns
 /// negative beyond ~1.4 mm (blue) to ~2.9 mm (red) for skin1, so the torso (0.25 m → 3 mm)
-/// shows the printed model's defect (dark), which `oss-stable` fixes.
+/// shows the printed model's defect (dark), which OSS's stable form fixes.
 pub const OSS_DEPTH_SCALE: f64 = 1.2e-2;
 
 /// OSS translucency term 20·ρ_ts/d^2.5 (eq. 6): d is the light distance in metres, clamped

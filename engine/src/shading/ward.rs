@@ -52,7 +52,7 @@ impl Sliders {
 }
 
 model_uniform! {
-    /// What `ward.wgsl` reads (its `WardUniform`, member for member).
+    /// What `ward.wgsl` reads (`#import WardUniform`, generated from this declaration).
     pub struct WardUniform {
         /// R_d(α') (the diffuse colour before the texture).
         pub rho_d: [f32; 3],
@@ -272,6 +272,7 @@ pub const WARD: Descriptor = Descriptor {
     probe: |p, px, _| probe(p, false, px),
     probe_wgsl: PROBE_WGSL,
     total_reflectance: |m, _| dipole::total_reflectance(m),
+    consts: &[],
 };
 
 /// `ward-printed`: eq. 1 as printed.

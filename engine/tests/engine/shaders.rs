@@ -1,9 +1,13 @@
 //! Every composed shader validates with naga (the compiler wgpu uses) and with Dawn's
 //! independent compiler, tint: the project's `tools/wgsl-tint` (npm package `webgpu`, which
 //! `.ci/run` installs) or a `tint` executable on the PATH. Without either the tint check says
-//! loudly that it did not run, and fails under `CI=true`.
+//! loudly that it did not run, and fails under `CI=true`. And every WGSL declaration is
+//! written once: no two modules declare the same item, no file declares a struct the
+//! composer generates from Rust, and the penumbra's seed pass refuses a block size other than
+//! the Rust side's.
 
-use dermis_engine::shader::{compose, modules, ShaderDefs};
+use dermis_engine::shader::uniforms::PENUMBRA_BLOCK;
+use dermis_engine::shader::{compose, compose_from, module_source, modules, structs, ShaderDefs};
 use dermis_engine::shading::ShadingModel;
 
 /// Every (label, composed source) the renderer can build.
@@ -266,6 +270,133 @@ fn the_tint_check_rejects_a_bad_shader() {
     let status = run_tint(&tint, &path, &dir).unwrap().status;
     assert!(!status.success(), "tint accepted a type error");
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The top-level declarations of WGSL `src` (comments and preprocessor lines dropped,
+/// whitespace collapsed), each up to its `;` or its closing `}`.
+fn declarations(src: &str) -> Vec<String> {
+    let code: String = src
+        .lines()
+        .map(|l| l.split("//").next().unwrap_or_default())
+        .filter(|l| !l.trim_start().starts_with('#'))
+        .collect::<Vec<_>>()
+        .join("\n");
+    let (mut out, mut item, mut depth) = (Vec::new(), String::new(), 0i32);
+    for c in code.chars() {
+        item.push(c);
+        match c {
+            '{' | '(' => depth += 1,
+            '}' | ')' => depth -= 1,
+            _ => {}
+        }
+        if depth == 0 && (c == ';' || c == '}') {
+            let text = item.split_whitespace().collect::<Vec<_>>().join(" ");
+            if text != ";" && !text.is_empty() {
+                out.push(text);
+            }
+            item.clear();
+        }
+    }
+    out
+}
+
+/// `(module, source)` of every WGSL text: the composer's modules (generated ones included)
+/// and the files of `shaders/` it does not hold (the conformance kernels).
+fn every_wgsl() -> Vec<(String, String)> {
+    let mut all: Vec<(String, String)> = modules()
+        .iter()
+        .map(|(n, s)| (n.to_string(), s.to_string()))
+        .collect();
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shaders");
+    for e in std::fs::read_dir(&dir).unwrap() {
+        let path = e.unwrap().path();
+        let name = path.file_stem().unwrap().to_string_lossy().to_string();
+        if !all.iter().any(|(n, _)| *n == name) {
+            all.push((name, std::fs::read_to_string(&path).unwrap()));
+        }
+    }
+    all
+}
+
+/// Declarations written in more than one module: `(declaration, modules)`.
+fn written_twice(all: &[(String, String)]) -> Vec<(String, Vec<String>)> {
+    let mut seen: Vec<(String, Vec<String>)> = Vec::new();
+    for (module, src) in all {
+        for d in declarations(src) {
+            match seen.iter_mut().find(|(s, _)| *s == d) {
+                Some((_, ms)) if !ms.contains(module) => ms.push(module.clone()),
+                Some(_) => {}
+                None => seen.push((d, vec![module.clone()])),
+            }
+        }
+    }
+    seen.retain(|(_, ms)| ms.len() > 1);
+    seen
+}
+
+#[test]
+fn no_declaration_is_written_in_two_modules() {
+    let all = every_wgsl();
+    assert!(all.len() > 30, "only {} modules", all.len());
+    let twice = written_twice(&all);
+    assert!(twice.is_empty(), "declared more than once: {twice:#?}");
+    // The check finds a planted copy: a struct written again in another module.
+    let mut planted = all.clone();
+    let split_out = module_source("split_out").unwrap();
+    planted.push(("planted".into(), format!("// a copy\n{split_out}")));
+    let twice = written_twice(&planted);
+    assert_eq!(twice.len(), 1, "{twice:#?}");
+    assert!(twice[0].0.starts_with("struct SplitOut"), "{twice:#?}");
+}
+
+#[test]
+fn no_shader_file_declares_a_struct_generated_from_rust() {
+    let generated: Vec<&str> = structs::table().iter().map(|l| l.name).collect();
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shaders");
+    for e in std::fs::read_dir(&dir).unwrap() {
+        let path = e.unwrap().path();
+        let src = std::fs::read_to_string(&path).unwrap();
+        for d in declarations(&src) {
+            for name in &generated {
+                assert!(
+                    !d.starts_with(&format!("struct {name} {{")),
+                    "{} declares {name}, which is generated from its Rust declaration",
+                    path.display()
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn the_penumbra_seed_pass_refuses_a_block_other_than_the_rust_sides() {
+    // As composed, with the Rust side's block, the pass validates (the tests above); with the
+    // block changed in `consts` and nothing else, the composition is refused.
+    let consts = module_source("consts").unwrap();
+    let line = format!("const PENUMBRA_BLOCK: u32 = {PENUMBRA_BLOCK}u;");
+    assert!(consts.contains(&line), "consts has no `{line}`");
+    let other = consts.replace(
+        &line,
+        &format!("const PENUMBRA_BLOCK: u32 = {}u;", PENUMBRA_BLOCK * 2),
+    );
+    let set: Vec<(&str, &str)> = modules()
+        .iter()
+        .map(|&(n, s)| {
+            if n == "consts" {
+                (n, other.as_str())
+            } else {
+                (n, s)
+            }
+        })
+        .collect();
+    let good = compose("penumbra", &ShaderDefs::new()).unwrap();
+    naga::front::wgsl::parse_str(&good).unwrap_or_else(|e| panic!("{e}"));
+    let bad = compose_from(&set, "penumbra", &ShaderDefs::new()).unwrap();
+    assert!(
+        naga::front::wgsl::parse_str(&bad).is_err(),
+        "the seed pass accepted a block of {}",
+        PENUMBRA_BLOCK * 2
+    );
 }
 
 fn which(name: &str) -> Result<std::path::PathBuf, ()> {

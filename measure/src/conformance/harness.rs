@@ -3,9 +3,10 @@
 //! model (the parent module: what is compared, and the tolerances).
 //!
 //! # What runs
-//! * **Shade kernel** (`shaders/conformance_shade.wgsl`), f32: appended, with a per-model
-//!   `conformance_probe`, to `compose("shading_model", &model.defs())` — the alias and flags of
-//!   the renderer's character pipeline for that model, so the model's `shade(s: Surface)` and
+//! * **Shade kernel** (`shaders/conformance_shade.wgsl`), f32: composed, with a per-model
+//!   `conformance_probe` and its input struct ([`ConformanceInput`], generated from Rust),
+//!   after `shading_model` with `model.defs()` — the alias and flags of the renderer's
+//!   character pipeline for that model, so the model's `shade(s: Surface)` and
 //!   its sub-function (`ward_specular`, `dipole_profile`, `oss_colour`, `sss_oblique`) are
 //!   the renderer's text. The Frame uniform ([`FrameUniform`]) is at `@group(0) @binding(0)`
 //!   and [`ModelParams`] at `@group(1) @binding(0)`, as in the renderer; inputs and outputs
@@ -21,9 +22,9 @@ use glam::DVec3;
 use wgpu::util::DeviceExt;
 
 use dermis_engine::render::{read_buffer, FrameUniform, Gpu};
-use dermis_engine::shader::{compose, ShaderDefs};
+use dermis_engine::shader::{compose, compose_from, modules, structs, ShaderDefs};
 use dermis_engine::shading::pixel::Pixel;
-use dermis_engine::shading::{ModelParams, ShadingModel};
+use dermis_engine::shading::{ModelParams, ShadingModel, Uniform};
 
 use super::{NdFunction, Precision};
 
@@ -41,8 +42,27 @@ fn uniform(binding: u32, visibility: wgpu::ShaderStages) -> wgpu::BindGroupLayou
     }
 }
 
-/// The f32 shade kernel (not a composer module: appended after composition).
+/// The f32 shade kernel (not a shared composer module: composed with the model's code by
+/// [`shade_source`]).
 pub const SHADE_KERNEL: &str = include_str!("../../../shaders/conformance_shade.wgsl");
+
+dermis_engine::gpu_struct! {
+    /// One input of the shade kernel (`conformance_shade.wgsl` reads an array of them; its
+    /// WGSL is generated from this declaration).
+    pub struct ConformanceInput {
+        pub n: [f32; 4],
+        pub t: [f32; 4],
+        pub b: [f32; 4],
+        pub l: [f32; 4],
+        pub v: [f32; 4],
+        /// rgb: light intensity × colour; w: light distance (m).
+        pub light: [f32; 4],
+        /// rgb: albedo; w: thickness (m).
+        pub albedo: [f32; 4],
+        /// x: the probe's argument (r or d in mm).
+        pub probe: [f32; 4],
+    }
+}
 /// The nondimensional kernel (not a composer module: appended after composition).
 pub const ND_KERNEL: &str = include_str!("../../../shaders/conformance_nd.wgsl");
 
@@ -54,10 +74,21 @@ fn shade_probe(model: ShadingModel) -> String {
     )
 }
 
-/// The WGSL the shade harness compiles for `model`.
+/// The WGSL the shade harness compiles for `model`: the model's code as the renderer composes
+/// it (`shading_model`, with its flags), its probe, and the kernel with its generated input
+/// struct.
 pub fn shade_source(model: ShadingModel) -> String {
-    let composed = compose("shading_model", &model.defs()).expect("built-in shaders compose");
-    format!("{composed}{}{SHADE_KERNEL}", shade_probe(model))
+    let input = structs::wgsl(&ConformanceInput::LAYOUT);
+    let probe = shade_probe(model);
+    let root = "#import shading_model\n#import conformance_probe\n#import conformance_shade\n";
+    let mut set = modules().to_vec();
+    set.extend([
+        ("ConformanceInput", input.as_str()),
+        ("conformance_probe", probe.as_str()),
+        ("conformance_shade", SHADE_KERNEL),
+        ("conformance", root),
+    ]);
+    compose_from(&set, "conformance", &model.defs()).expect("built-in shaders compose")
 }
 
 /// The WGSL body of `nd_probe(a, b)` calling `f` on the kernel's inputs.
@@ -146,8 +177,8 @@ fn storage_entry(binding: u32, read_only: bool) -> wgpu::BindGroupLayoutEntry {
     }
 }
 
-/// Bytes of one `ConformanceInput`.
-const INPUT_BYTES: u64 = 128;
+/// Bytes of one [`ConformanceInput`].
+const INPUT_BYTES: u64 = std::mem::size_of::<ConformanceInput>() as u64;
 /// Bytes of one shade output (two vec4).
 const OUTPUT_BYTES: u64 = 32;
 
@@ -263,41 +294,39 @@ impl<'g> Harness<'g> {
         );
         let mut order: Vec<usize> = (0..items.len()).collect();
         order.sort_by_key(|&i| items[i].params);
-        let mut inputs: Vec<f32> = Vec::new();
+        let mut inputs: Vec<ConformanceInput> = Vec::new();
         let mut slots = vec![0usize; items.len()];
         let mut groups: Vec<(usize, usize, usize)> = Vec::new(); // (params, first slot, count)
         let mut k = 0;
         while k < order.len() {
             let p = items[order[k]].params;
             assert!(p < params.len(), "item uses params {p} of {}", params.len());
-            let first = inputs.len() / 32;
+            let first = inputs.len();
             let mut count = 0;
             while k < order.len() && items[order[k]].params == p {
                 let it = &items[order[k]];
                 slots[order[k]] = first + count;
                 let px = &it.pixel;
                 let v4 = |v: DVec3, w: f64| [v.x as f32, v.y as f32, v.z as f32, w as f32];
-                for row in [
-                    v4(px.n, 0.0),
-                    v4(px.t, 0.0),
-                    v4(px.b, 0.0),
-                    v4(px.l, 0.0),
-                    v4(px.v, 0.0),
-                    v4(px.light, px.light_dist_m),
-                    v4(px.albedo, px.thickness_m),
-                    [it.probe as f32, 0.0, 0.0, 0.0],
-                ] {
-                    inputs.extend_from_slice(&row);
-                }
+                inputs.push(ConformanceInput {
+                    n: v4(px.n, 0.0),
+                    t: v4(px.t, 0.0),
+                    b: v4(px.b, 0.0),
+                    l: v4(px.l, 0.0),
+                    v: v4(px.v, 0.0),
+                    light: v4(px.light, px.light_dist_m),
+                    albedo: v4(px.albedo, px.thickness_m),
+                    probe: [it.probe as f32, 0.0, 0.0, 0.0],
+                });
                 count += 1;
                 k += 1;
             }
             groups.push((p, first, count));
             let padded = (first + count).div_ceil(chunk) * chunk;
-            inputs.resize(padded * 32, 0.0);
+            inputs.resize(padded, bytemuck::Zeroable::zeroed());
         }
-        let slots_total = (inputs.len() / 32).max(1);
-        inputs.resize(slots_total * 32, 0.0);
+        let slots_total = inputs.len().max(1);
+        inputs.resize(slots_total, bytemuck::Zeroable::zeroed());
         let input_buf = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("conformance inputs"),
             contents: bytemuck::cast_slice(&inputs),
@@ -312,7 +341,7 @@ impl<'g> Harness<'g> {
         });
         // Identity view_proj, the ambient; the rest 0 (no shadow map: every point lit).
         let frame = FrameUniform {
-            view_proj: glam::Mat4::IDENTITY.to_cols_array_2d(),
+            view_proj: glam::Mat4::IDENTITY,
             ambient: [ambient.x as f32, ambient.y as f32, ambient.z as f32],
             ..bytemuck::Zeroable::zeroed()
         };

@@ -1,8 +1,8 @@
 //! The penumbra map: the distance from every point of the key light's shadow map to the
-//! nearest caster edge, by jump flooding over a grid an eighth of the map's resolution
-//! (`shaders/penumbra.wgsl`). Models that declare the `penumbra` effect (`preintegrated`) read
-//! it to filter their shadow by the material's profile: a receiver at signed distance d from a
-//! straight shadow edge receives the fraction ESF(d) of the light, the edge-spread function of
+//! nearest caster edge, by jump flooding over a grid [`BLOCK`] times coarser than the map
+//! (`shaders/penumbra.wgsl`). Models that declare the `penumbra` effect read it to filter
+//! their shadow by the material's profile: a receiver at signed distance d from a straight
+//! shadow edge receives the fraction ESF(d) of the light, the edge-spread function of
 //! its diffusion kernel (a table in its LUT), so light bleeds into the shadow as far as the
 //! material carries it — also far beyond what a few filter taps reach.
 //!
@@ -19,9 +19,10 @@ use crate::render::pipelines::{pipeline_layout, wgsl_module};
 use crate::render::prepared::{Drawn, PassFrame, PreparedFrame};
 use crate::render::resources::Resources;
 use crate::scene::FramePacket;
+use crate::shader::uniforms::PenumbraUniform;
 
-/// Shadow-map texels per grid texel (per side).
-pub const BLOCK: u32 = 8;
+/// Shadow-map texels per grid texel (per side), shared with the seed shader through `consts`.
+pub use crate::shader::uniforms::PENUMBRA_BLOCK as BLOCK;
 /// How far from an edge a distance is needed (mm): the edge-spread table's span.
 pub const REACH_MM: f32 = crate::shading::edge_spread::SPAN_MM as f32;
 /// The grid's texture format: seed uv, depth, valid.
@@ -45,20 +46,6 @@ pub fn edge_gap_m(texel_m: f32) -> f32 {
 const SLOT: u64 = 256;
 /// The most passes a grid can need: the seed and one jump per halving of 2¹⁶ texels.
 const MAX_PASSES: usize = 17;
-
-crate::shading::uniform::gpu_struct! {
-/// One pass's constants (`Jump` in `penumbra.wgsl`).
-pub struct Jump {
-    /// This pass's step (grid texels; 0: the seed pass).
-    pub step: f32,
-    /// The grid's size (texels per side).
-    pub grid: f32,
-    /// Shadow-map texels per grid texel.
-    pub block: f32,
-    /// The depth step that makes an edge (the map's depth units).
-    pub edge_gap: f32,
-}
-}
 
 /// The composed pass shader.
 pub fn shader_source() -> String {
@@ -188,7 +175,9 @@ impl PenumbraPass {
                         resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
                             buffer: &uniforms,
                             offset: slot * SLOT,
-                            size: wgpu::BufferSize::new(std::mem::size_of::<Jump>() as u64),
+                            size: wgpu::BufferSize::new(
+                                std::mem::size_of::<PenumbraUniform>() as u64
+                            ),
                         }),
                     },
                     wgpu::BindGroupEntry {
@@ -263,11 +252,11 @@ impl Pass for PenumbraPass {
             let first = std::iter::once(0);
             let all = first.chain(jump_steps(self.size, shadow.width_m()));
             for (k, step) in all.enumerate().take(MAX_PASSES) {
-                let jump = Jump {
+                let jump = PenumbraUniform {
                     step: step as f32,
                     grid: self.size as f32,
-                    block: BLOCK as f32,
                     edge_gap: gap,
+                    _pad0: 0.0,
                 };
                 queue.write_buffer(&self.uniforms, k as u64 * SLOT, bytemuck::bytes_of(&jump));
                 frame.uploads += 1;

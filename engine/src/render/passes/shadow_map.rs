@@ -13,6 +13,7 @@ use crate::render::pipelines::{pipeline_layout, wgsl_module};
 use crate::render::prepared::{Drawn, PassFrame, PreparedFrame};
 use crate::render::resources::Resources;
 use crate::scene::FramePacket;
+use crate::shader::uniforms::CasterUniform;
 use crate::shader::{compose, ShaderDefs};
 
 /// The composed caster shader (depth only).
@@ -115,7 +116,7 @@ impl Pass for ShadowMapPass {
         });
         let caster_buffer = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("shadow caster"),
-            size: 64,
+            size: std::mem::size_of::<CasterUniform>() as u64,
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
@@ -153,8 +154,10 @@ impl Pass for ShadowMapPass {
     ) -> PassFrame {
         let runs = frame.shadow.drawn;
         if runs {
-            let m = frame.shadow.view_proj.to_cols_array();
-            queue.write_buffer(&self.caster_buffer, 0, bytemuck::cast_slice(&m));
+            let caster = CasterUniform {
+                view_proj: frame.shadow.view_proj,
+            };
+            queue.write_buffer(&self.caster_buffer, 0, bytemuck::bytes_of(&caster));
             frame.uploads += 1;
         }
         PassFrame { runs, steps: 0 }

@@ -11,6 +11,7 @@ use crate::render::prepared::{Drawn, PassFrame, PreparedFrame};
 use crate::render::resources::Resources;
 use crate::render::targets::{depth_state, multisample, MSAA_SAMPLES};
 use crate::scene::FramePacket;
+use crate::shader::uniforms::UiUniform;
 use crate::shader::{compose, ShaderDefs};
 use crate::ui::{UiVertex, MAX_VERTICES};
 
@@ -67,7 +68,7 @@ impl UiPass {
         });
         let params = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("ui params"),
-            size: 16,
+            size: std::mem::size_of::<UiUniform>() as u64,
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
@@ -178,13 +179,15 @@ impl UiPass {
             return false;
         }
         self.screen = size;
-        let data = [
-            size[0] as f32,
-            size[1] as f32,
-            if self.srgb { 1.0 } else { 0.0 },
-            0.0,
-        ];
-        queue.write_buffer(&self.params, 0, bytemuck::cast_slice(&data));
+        let params = UiUniform {
+            screen: [
+                size[0] as f32,
+                size[1] as f32,
+                if self.srgb { 1.0 } else { 0.0 },
+                0.0,
+            ],
+        };
+        queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
         true
     }
 

@@ -1,0 +1,9 @@
+// The vertex stage of the full-screen passes (the subsurface pass; the penumbra map's passes,
+// over its grid): one triangle covering the target. Their fragment stages read the pixel
+// from @builtin(position).
+
+@vertex
+fn vs_main(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
+    let uv = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
+    return vec4<f32>(uv * 2.0 - 1.0, 0.0, 1.0);
+}
