@@ -42,6 +42,23 @@ pub fn ensure_font() {
     });
 }
 
+/// Draws a `size` chart with `draw` into an RGB buffer and writes it to `path` as PNG (plotters
+/// draws, the project's `image` encodes: plotters' own encoder would build a second `image`).
+pub fn png(
+    path: &Path,
+    size: (u32, u32),
+    draw: impl FnOnce(&DrawingArea<BitMapBackend<'_>, Shift>) -> Result<(), String>,
+) -> Result<(), String> {
+    let mut rgb = vec![255u8; (size.0 * size.1 * 3) as usize];
+    {
+        let root = BitMapBackend::with_buffer(&mut rgb, size).into_drawing_area();
+        draw(&root)?;
+        root.present().map_err(|e| e.to_string())?;
+    }
+    image::save_buffer(path, &rgb, size.0, size.1, image::ExtendedColorType::Rgb8)
+        .map_err(|e| format!("{}: {e}", path.display()))
+}
+
 /// A panel of `area`: a caption, time in seconds on x (0..`t_max`), `y_desc` over `y`.
 fn panel<'a, DB: DrawingBackend>(
     area: &'a DrawingArea<DB, Shift>,
@@ -75,8 +92,19 @@ pub fn soak_png(
     path: &Path,
 ) -> Result<(), String> {
     ensure_font();
+    png(path, (1200, 900), |root| {
+        soak_panels(root, seconds, tiers, budget_ms)
+    })
+}
+
+/// The soak chart's three panels on `root`.
+fn soak_panels(
+    root: &DrawingArea<BitMapBackend<'_>, Shift>,
+    seconds: &[SecondRec],
+    tiers: &[ShadingModel],
+    budget_ms: f64,
+) -> Result<(), String> {
     let e = |e: &dyn std::fmt::Display| e.to_string();
-    let root = BitMapBackend::new(path, (1200, 900)).into_drawing_area();
     root.fill(&WHITE).map_err(|x| e(&x))?;
     let panels = root.split_evenly((3, 1));
     let t_max = seconds.last().map_or(1.0, |s| s.t_s).max(1.0);
@@ -166,6 +194,5 @@ pub fn soak_png(
         .border_style(BLACK)
         .draw()
         .map_err(|x| e(&x))?;
-    root.present().map_err(|x| e(&x))?;
     Ok(())
 }

@@ -351,12 +351,19 @@ fn panel_points(report: &Value, mali: bool) -> (Points, Option<f64>) {
 /// `pareto.png`: error against G57 cycles (left) and against lavapipe time (right).
 pub fn chart(report: &Value, path: &Path) -> Result<(), String> {
     crate::cmd::chart::ensure_font();
-    draw_chart(report, path).map_err(|e| format!("{}: {e}", path.display()))
+    crate::cmd::chart::png(path, (1500, 650), |root| {
+        draw_chart(report, root).map_err(|e| format!("{}: {e}", path.display()))
+    })
 }
 
-fn draw_chart(report: &Value, path: &Path) -> Result<(), Box<dyn std::error::Error>> {
+fn draw_chart(
+    report: &Value,
+    root: &plotters::prelude::DrawingArea<
+        plotters::prelude::BitMapBackend<'_>,
+        plotters::coord::Shift,
+    >,
+) -> Result<(), Box<dyn std::error::Error>> {
     use plotters::prelude::*;
-    let root = BitMapBackend::new(path, (1500, 650)).into_drawing_area();
     root.fill(&WHITE)?;
     let specs = [
         (
@@ -448,7 +455,6 @@ fn draw_chart(report: &Value, path: &Path) -> Result<(), Box<dyn std::error::Err
             .position(SeriesLabelPosition::UpperRight)
             .draw()?;
     }
-    root.present()?;
     Ok(())
 }
 
