@@ -118,8 +118,8 @@ pub enum Command {
     Texturing(cmd::texturing::TexturingArgs),
     /// Generate the path-traced reference data set (tools/reference/<material>.json).
     Reference(cmd::reference::ReferenceArgs),
-    /// Bake the optics tables the core ships (assets/sss/: the A ↔ α' table and the grids every
-    /// material's tables and LUT are interpolated from).
+    /// Bake the optics tables the core ships (assets/sss/: the A ↔ α' table, the presets'
+    /// tables and LUTs, and with --grid the grids every other material's are interpolated from).
     Lut(cmd::lut::LutArgs),
     /// Radial exitance profile M(r) of a flat medium under a point light, per shading model.
     Profile(cmd::profile::ProfileArgs),

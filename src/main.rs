@@ -45,9 +45,6 @@ fn main() -> ExitCode {
             return ExitCode::from(2);
         }
     };
-    // Materials no shipped table covers (the measurement commands' `--eta`, `--g`) are baked
-    // by the Monte Carlo; the game's presets are shipped.
-    dermis_measure::bake::install();
     // Headless commands and windows alike: winit's and wgpu's Wayland probes print errors
     // without an XDG_RUNTIME_DIR.
     quiet_wayland_probe();

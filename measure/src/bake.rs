@@ -1,8 +1,10 @@
 //! The Monte Carlo bakes of the spatial models' tables (`dermis_engine::shading::bake`: kernel,
 //! q(μ), δ(μ), slab transmittances) and, in [`crate::lut`], of the pre-integration LUT. Run
-//! offline by `dermis lut` (the shipped `assets/sss/*.tables` and `*.lut`) and, through
-//! [`install`], for a material no shipped file covers (the measurement commands' `--eta`,
-//! `--g`).
+//! offline by `dermis lut`: per preset (the shipped `assets/sss/<preset>-eta<η>.tables` and
+//! `.lut`) and per node of the nondimensional grids every other material's tables are
+//! interpolated from ([`crate::grid`], [`measure_channel`] being the one measurement of both);
+//! through [`install`], a direct bake where a command or a test asks for one (`dermis bench
+//! tables` measures the grid against it).
 //!
 //! Seeds are fixed and differ from every reference set's, photons in fixed batches, so a bake
 //! is deterministic and independent of the thread count.
@@ -14,8 +16,10 @@ use dermis_engine::shading::{fresnel, preintegrated, Material};
 
 use crate::mc::{self, Medium};
 
-/// Lets the runtime bake the tables and LUT of materials no shipped file covers, at the
-/// shipped budget (the desktop binary installs it at start; the APK never links it).
+/// Makes this process bake the tables and LUT of every material no shipped file covers
+/// directly by the Monte Carlo at the shipped budget (seconds for the tables, minutes for the
+/// LUT) instead of interpolating them from the grid: only where a command or a test asks for
+/// a direct bake (the APK never links it).
 pub fn install() {
     bake::install_baker(|m| measure(m, bake::DEFAULT_BUDGET, threads()));
     preintegrated::install_baker(|m, b| {
@@ -87,101 +91,150 @@ fn detectors(edges: &[f64], budget: &Budget) -> mc::Detectors {
     }
 }
 
-/// Measures the tables for `m` within `budget` on `threads` threads.
+/// The measured tables of one channel's medium (lengths in the medium's units).
+pub struct Channel {
+    /// Power leaving through each bin of the layout's edges per unit incident power.
+    pub mass: Vec<f64>,
+    /// q(μ_k) at the oblique nodes (q(0) = 0, q(1) = 1).
+    pub oblique: [f64; OBLIQUE_NODES],
+    /// δ(μ_k) (0 at μ = 1).
+    pub shift: [f64; OBLIQUE_NODES],
+    /// Diffuse transmittance at each of the layout's thicknesses.
+    pub slab: Vec<f64>,
+}
+
+/// Where one channel's tables are measured (lengths in the medium's units).
+pub struct Layout<'a> {
+    /// The kernel's annuli.
+    pub edges: &'a [f64],
+    /// The oblique beams' strips reach ±x_max.
+    pub x_max: f64,
+    /// The backlit slabs, ascending.
+    pub thicknesses: &'a [f64],
+}
+
+/// Measures one channel's medium `med`: the pencil beam's exitance through the annuli, q(μ)
+/// and δ(μ) at the oblique nodes from symmetric strips, and the backlit slabs' diffuse
+/// transmittance ([`slab_column`]), where `at` says; seeds derived from `seed`. The one
+/// measurement of a direct bake ([`measure`]) and of a grid node (`crate::grid`).
+pub fn measure_channel(
+    med: &Medium,
+    at: &Layout,
+    budget: &Budget,
+    seed: u64,
+    threads: usize,
+) -> Channel {
+    let (edges, x_max) = (at.edges, at.x_max);
+    let semi = mc::Geometry::SemiInfinite;
+    let normal = (semi, mc::Source::Normal);
+    let n = photons_for(med, normal, budget.kernel, budget.kernel_events, budget, seed);
+    let r = mc::simulate(
+        med,
+        semi,
+        mc::Source::Normal,
+        &detectors(edges, budget),
+        n,
+        seed,
+        threads,
+    );
+    let mass = edges
+        .windows(2)
+        .zip(&r.reflectance_profile.values)
+        .map(|(w, v)| v * std::f64::consts::PI * (w[1] * w[1] - w[0] * w[0]))
+        .collect();
+    // Oblique beams: reflectance and forward shift from the shadow-edge estimator over
+    // symmetric strips (the cumulative exitance across the edge).
+    let strips: Vec<f64> = (0..=2 * STRIPS)
+        .map(|i| x_max * (i as f64 / STRIPS as f64 - 1.0))
+        .collect();
+    let oblique_run = |mu: f64, seed: u64| {
+        let source = mc::Source::Collimated { mu };
+        let n = photons_for(
+            med,
+            (semi, source),
+            budget.oblique,
+            budget.events,
+            budget,
+            seed,
+        );
+        let cap = budget.max_events;
+        let e = mc::edge::shadow_edge_with(med, mu, &strips, cap, n, seed, threads);
+        let r = e.reflectance.mean;
+        // E[Δx]·R = ∫₀^∞ (R − M) dx − ∫_{−∞}^0 M dx; the beam travels toward −x.
+        let moment: f64 = strips
+            .windows(2)
+            .zip(&e.strips.values)
+            .map(|(w, m)| {
+                let width = w[1] - w[0];
+                if w[0] >= 0.0 {
+                    (r - m) * width
+                } else {
+                    -m * width
+                }
+            })
+            .sum();
+        (r, -moment / r.max(f64::MIN_POSITIVE))
+    };
+    let mut oblique = [0.0; OBLIQUE_NODES];
+    let mut shift = [0.0; OBLIQUE_NODES];
+    let (normal, _) = oblique_run(1.0, seed + 1);
+    for k in 1..OBLIQUE_NODES - 1 {
+        let mu = oblique_node(k);
+        let (r, delta) = oblique_run(mu, seed + 10 + k as u64);
+        // Where the medium reflects (next to) nothing the ratio is noise: Fresnel's
+        // transmission ratio stands in; q stays within [0, 4] whatever the noise.
+        oblique[k] = if normal > 1e-9 {
+            (r / normal).clamp(0.0, 4.0)
+        } else {
+            fresnel::transmittance_shader(med.eta, mu)
+                / fresnel::transmittance_shader(med.eta, 1.0).max(1e-12)
+        };
+        shift[k] = if delta.is_finite() {
+            delta.clamp(0.0, x_max)
+        } else {
+            0.0
+        };
+    }
+    oblique[OBLIQUE_NODES - 1] = 1.0;
+    shift[0] = shift[1];
+    let slab = slab_column(med, at.thicknesses, budget, seed + 100, threads);
+    Channel {
+        mass,
+        oblique,
+        shift,
+        slab,
+    }
+}
+
+/// Measures the tables for `m` within `budget` on `threads` threads: the direct bake of one
+/// material (the presets' shipped files; every other material's tables are interpolated from
+/// the grid, [`crate::grid`], whose yardstick this is).
 pub fn measure(m: &Material, budget: Budget, threads: usize) -> Bake {
     const SEED: u64 = 0x5EED_BA4E;
     let edges = ring_edges(m);
+    let x_max = *edges.last().unwrap_or(&10.0);
+    let thicknesses = direct_thicknesses();
+    let at = Layout {
+        edges: &edges,
+        x_max,
+        thicknesses: &thicknesses,
+    };
     let mut mass = vec![[0.0; 3]; edges.len() - 1];
     let mut oblique = [[0.0; 3]; OBLIQUE_NODES];
     let mut slab = [[0.0; 3]; SLAB_NODES];
     let mut shift = [[0.0; 3]; OBLIQUE_NODES];
-    let semi = mc::Geometry::SemiInfinite;
     for c in 0..3 {
-        let med = medium(m, c);
         let seed = SEED + 1000 * c as u64;
-        let normal = (semi, mc::Source::Normal);
-        let n = photons_for(
-            &med,
-            normal,
-            budget.kernel,
-            budget.kernel_events,
-            &budget,
-            seed,
-        );
-        let r = mc::simulate(
-            &med,
-            semi,
-            mc::Source::Normal,
-            &detectors(&edges, &budget),
-            n,
-            seed,
-            threads,
-        );
-        for (k, w) in edges.windows(2).enumerate() {
-            let area = std::f64::consts::PI * (w[1] * w[1] - w[0] * w[0]);
-            mass[k][c] = r.reflectance_profile.values[k] * area;
+        let ch = measure_channel(&medium(m, c), &at, &budget, seed, threads);
+        for (k, v) in ch.mass.iter().enumerate() {
+            mass[k][c] = *v;
         }
-        // Oblique beams: reflectance and forward shift from the shadow-edge estimator over
-        // symmetric strips (the cumulative exitance across the edge).
-        let x_max = *edges.last().unwrap_or(&10.0);
-        let strips: Vec<f64> = (0..=2 * STRIPS)
-            .map(|i| x_max * (i as f64 / STRIPS as f64 - 1.0))
-            .collect();
-        let oblique_run = |mu: f64, seed: u64| {
-            let source = mc::Source::Collimated { mu };
-            let n = photons_for(
-                &med,
-                (semi, source),
-                budget.oblique,
-                budget.events,
-                &budget,
-                seed,
-            );
-            let cap = budget.max_events;
-            let e = mc::edge::shadow_edge_with(&med, mu, &strips, cap, n, seed, threads);
-            let r = e.reflectance.mean;
-            // E[Δx]·R = ∫₀^∞ (R − M) dx − ∫_{−∞}^0 M dx; the beam travels toward −x.
-            let moment: f64 = strips
-                .windows(2)
-                .zip(&e.strips.values)
-                .map(|(w, m)| {
-                    let width = w[1] - w[0];
-                    if w[0] >= 0.0 {
-                        (r - m) * width
-                    } else {
-                        -m * width
-                    }
-                })
-                .sum();
-            (r, -moment / r.max(f64::MIN_POSITIVE))
-        };
-        let (normal, _) = oblique_run(1.0, seed + 1);
-        for k in 1..OBLIQUE_NODES - 1 {
-            let mu = oblique_node(k);
-            let (r, delta) = oblique_run(mu, seed + 10 + k as u64);
-            // Where the medium reflects (next to) nothing the ratio is noise: Fresnel's
-            // transmission ratio stands in; q stays within [0, 4] whatever the noise.
-            oblique[k][c] = if normal > 1e-9 {
-                (r / normal).clamp(0.0, 4.0)
-            } else {
-                fresnel::transmittance_shader(m.eta, mu)
-                    / fresnel::transmittance_shader(m.eta, 1.0).max(1e-12)
-            };
-            shift[k][c] = if delta.is_finite() {
-                delta.clamp(0.0, x_max)
-            } else {
-                0.0
-            };
+        for k in 0..OBLIQUE_NODES {
+            oblique[k][c] = ch.oblique[k];
+            shift[k][c] = ch.shift[k];
         }
-        oblique[0][c] = 0.0;
-        oblique[OBLIQUE_NODES - 1][c] = 1.0;
-        shift[0][c] = shift[1][c];
-        shift[OBLIQUE_NODES - 1][c] = 0.0;
-        for (k, t) in slab_column(&med, &budget, seed + 100, threads)
-            .into_iter()
-            .enumerate()
-        {
-            slab[k][c] = t;
+        for (k, v) in ch.slab.iter().enumerate() {
+            slab[k][c] = *v;
         }
     }
     Bake {
@@ -193,21 +246,34 @@ pub fn measure(m: &Material, budget: Budget, threads: usize) -> Bake {
     }
 }
 
+/// The slab thicknesses of a material's tables (mm): SLAB_FIRST_MM · 2^k.
+pub fn direct_thicknesses() -> Vec<f64> {
+    (0..SLAB_NODES)
+        .map(|k| SLAB_FIRST_MM * (1u32 << k) as f64)
+        .collect()
+}
+
 /// The diffuse transmittance (the unscattered beam excluded: it is the light seen through the
-/// slab, not translucency) of slabs SLAB_FIRST_MM · 2^k mm thick lit at normal incidence, for
+/// slab, not translucency) of slabs of the ascending `thicknesses` lit at normal incidence, for
 /// one channel's medium. Each slab runs up to `budget.slab` photons within the event cap (a
 /// dark medium's photons die in a few events, so its thick slabs get many). Thick slabs transmit
 /// too few photons to measure: past the first node beyond a diffusion length whose relative
 /// error exceeds 25 %, the transmittance carries on from the last measured node with the
 /// medium's asymptotic decay ([`asymptotic_decay`]).
-fn slab_column(med: &Medium, budget: &Budget, seed: u64, threads: usize) -> [f64; SLAB_NODES] {
-    let mut slab = [0.0; SLAB_NODES];
+fn slab_column(
+    med: &Medium,
+    thicknesses: &[f64],
+    budget: &Budget,
+    seed: u64,
+    threads: usize,
+) -> Vec<f64> {
+    let mut slab: Vec<f64> = Vec::with_capacity(thicknesses.len());
     let decay = asymptotic_decay(med.sigma_a, med.sigma_s_prime);
     let mut extrapolating = false;
-    for k in 0..SLAB_NODES {
-        let d = SLAB_FIRST_MM * (1u32 << k) as f64;
+    for (k, &d) in thicknesses.iter().enumerate() {
+        let carried = |slab: &[f64]| slab[k - 1] * (-decay * (d - thicknesses[k - 1])).exp();
         if k > 0 && extrapolating {
-            slab[k] = slab[k - 1] * (-decay * (d / 2.0)).exp();
+            slab.push(carried(&slab));
             continue;
         }
         let geom = mc::Geometry::Slab { d };
@@ -228,45 +294,15 @@ fn slab_column(med: &Medium, budget: &Budget, seed: u64, threads: usize) -> [f64
         let poor = diffuse <= 0.0 || se > 0.25 * diffuse;
         if k > 0 && thick && poor {
             extrapolating = true;
-            slab[k] = slab[k - 1] * (-decay * (d / 2.0)).exp();
+            slab.push(carried(&slab));
         } else {
-            slab[k] = diffuse;
+            slab.push(diffuse);
         }
     }
     slab
 }
 
-/// The rate (mm⁻¹) at which light decays deep in a medium with absorption `sigma_a` and
-/// reduced scattering `sigma_s_prime` (isotropic scattering in the similar medium): κσ'_t,
-/// with κ the root of ω'/(2κ) ln((1 + κ)/(1 − κ)) = 1 in (0, 1), ω' = σ'_s/σ'_t (Case's
-/// discrete eigenvalue of transport theory). Diffusion's σ_tr = √(3σ_a σ'_t) is its limit as
-/// ω' → 1; a dark medium decays slower than diffusion says (skin-dark's blue: 1.45 against
-/// 1.90 mm⁻¹), toward σ'_t as ω' → 0. No scattering: σ_a; no absorption: 0.
-pub fn asymptotic_decay(sigma_a: f64, sigma_s_prime: f64) -> f64 {
-    let t = sigma_a + sigma_s_prime;
-    if t.is_nan() || t <= 0.0 || t.is_infinite() {
-        return 0.0;
-    }
-    let w = (sigma_s_prime / t).clamp(0.0, 1.0);
-    if w <= 0.0 {
-        return t;
-    }
-    if w >= 1.0 {
-        return 0.0;
-    }
-    // f(κ) = ω' artanh(κ)/κ − 1 rises from ω' − 1 < 0 at κ → 0 to +∞ at κ → 1.
-    let f = |k: f64| w * k.atanh() / k - 1.0;
-    let (mut lo, mut hi) = (1e-12_f64, 1.0 - 1e-16);
-    for _ in 0..200 {
-        let k = 0.5 * (lo + hi);
-        if f(k) > 0.0 {
-            hi = k;
-        } else {
-            lo = k;
-        }
-    }
-    0.5 * (lo + hi) * t
-}
+pub use dermis_engine::shading::transport::asymptotic_decay;
 
 #[cfg(test)]
 mod tests {
@@ -311,7 +347,7 @@ mod tests {
         let path = crate::ground_truth::file_for(&crate::ground_truth::source_dir(), &dark.name);
         let refs = crate::ground_truth::ReferenceSet::load(&path).expect("skin-dark references");
         let slabs: Vec<_> = (0..3)
-            .map(|c| slab_column(&medium(&dark, c), &bake::DEFAULT_BUDGET, 7, 2))
+            .map(|c| slab_column(&medium(&dark, c), &direct_thicknesses(), &bake::DEFAULT_BUDGET, 7, 2))
             .collect();
         let ln_t: [DVec3; SLAB_NODES] =
             std::array::from_fn(|k| DVec3::from_array([0, 1, 2].map(|c| slabs[c][k].ln())));

@@ -17,6 +17,7 @@ pub mod albedo;
 pub mod bake;
 pub mod conformance;
 pub mod face;
+pub mod grid;
 pub mod ground_truth;
 pub mod lut;
 pub mod mc;

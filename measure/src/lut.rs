@@ -3,11 +3,9 @@
 //! measured by the sphere walker ([`mc::sphere_with`]), stored as log2 M, plus the two factor
 //! rows. `dermis lut` writes the shipped ones (`assets/sss/*.lut`).
 
-use dermis_engine::shading::bake::{Bake, Budget, SLAB_FIRST_MM};
-use dermis_engine::shading::preintegrated::{
-    params_from, row_radius_mm, Lut, LUT_ROWS, LUT_U, LUT_V, SLAB_SPAN,
-};
-use dermis_engine::shading::{fresnel, subsurface, Material};
+use dermis_engine::shading::bake::{Bake, Budget};
+use dermis_engine::shading::preintegrated::{self, row_radius_mm, Lut, LUT_U, LUT_V};
+use dermis_engine::shading::Material;
 
 use crate::mc;
 
@@ -47,13 +45,29 @@ pub fn sphere_rows(m: &Material, budget: &Budget, threads: usize) -> Vec<[f64; 3
 /// Row `j`, channel `c` of [`sphere_rows`].
 fn sphere_row(m: &Material, j: usize, c: usize, budget: &Budget, threads: usize) -> Vec<f64> {
     const SEED: u64 = 0x5EED_5F4E;
-    let edges = band_edges();
-    let rho = row_radius_mm(j);
     let med = crate::bake::medium(m, c);
     let seed = SEED + 1000 * c as u64 + j as u64;
+    sphere_run(&med, row_radius_mm(j), m.sigma_tr()[c], budget, seed, threads)
+}
+
+/// One LUT row: ln M per texel (u = (n·l + 1)/2, lit side last) of a sphere of radius `rho` of
+/// the medium `med` (transport coefficient `sigma_tr`, same length unit) under a directional
+/// light of unit irradiance, [`log_row`] of the walker's bands: `budget.sphere` photons or,
+/// where photons walk long, as many as `budget.sphere_events` events allow (a pilot run
+/// measures the events per photon). The one measurement of a material's row and of a sphere
+/// grid node (`crate::grid`).
+pub fn sphere_run(
+    med: &mc::Medium,
+    rho: f64,
+    sigma_tr: f64,
+    budget: &Budget,
+    seed: u64,
+    threads: usize,
+) -> Vec<f64> {
+    let edges = band_edges();
     let pilot = budget.min_photons.clamp(1, 200);
     let probe = mc::sphere_with(
-        &med,
+        med,
         rho,
         &edges,
         budget.max_events,
@@ -64,11 +78,11 @@ fn sphere_row(m: &Material, j: usize, c: usize, budget: &Budget, threads: usize)
     let per_photon = (probe.events as f64 / pilot as f64).max(1.0);
     let n = ((budget.sphere_events as f64 / per_photon) as u64)
         .clamp(budget.min_photons, budget.sphere.max(budget.min_photons));
-    let r = mc::sphere_with(&med, rho, &edges, budget.max_events, n, seed, threads);
+    let r = mc::sphere_with(med, rho, &edges, budget.max_events, n, seed, threads);
     // Texel i is band U − 1 − i.
     let values: Vec<f64> = (0..LUT_U).map(|i| r.bands.values[LUT_U - 1 - i]).collect();
     let errors: Vec<f64> = (0..LUT_U).map(|i| r.bands.std_err[LUT_U - 1 - i]).collect();
-    log_row(&values, &errors, rho, m.sigma_tr()[c])
+    log_row(&values, &errors, rho, sigma_tr)
 }
 
 /// Smallest exitance a texel holds (ln: −27.6).
@@ -88,7 +102,7 @@ const FLOOR: f64 = 1e-12;
 /// - a band average of an exponential over a band e^a wide exceeds the centre value by
 ///   sinh(a/2)/(a/2): the centre value is stored (the sampler interpolates ln M linearly,
 ///   exact for an exponential fall-off).
-fn log_row(values: &[f64], errors: &[f64], rho: f64, sigma_tr: f64) -> Vec<f64> {
+pub(crate) fn log_row(values: &[f64], errors: &[f64], rho: f64, sigma_tr: f64) -> Vec<f64> {
     let n = values.len();
     let measured: Vec<usize> = (0..n)
         .filter(|&i| values[i] > 0.0 && errors[i] <= 0.5 * values[i])
@@ -197,26 +211,15 @@ fn solve3(m: [[f64; 3]; 3], r: [f64; 3]) -> Option<f64> {
     x.is_finite().then_some(x)
 }
 
-/// Bakes the LUT of material `m` (tables `b`) within `budget` on `threads` threads.
+/// Bakes the LUT of material `m` (tables `b`) within `budget` on `threads` threads: the
+/// direct bake (the presets' shipped LUTs, and the yardstick of the grid's interpolated rows).
 pub fn bake_lut(b: &Bake, m: &Material, budget: &Budget, threads: usize) -> Lut {
-    let mut texels = vec![[0.0f32; 4]; LUT_U * LUT_ROWS];
-    let p = params_from(b, m).pack();
-    let exit_norm = 1.0 / (std::f64::consts::PI * subsurface::exit_normalisation(m.eta));
-    let entry = fresnel::transmittance_shader(m.eta, 1.0).max(1e-12);
-    for i in 0..LUT_U {
-        let u = i as f64 / (LUT_U - 1) as f64;
-        let ft = fresnel::transmittance_shader(m.eta, u);
-        texels[LUT_V * LUT_U + i] = [(ft * exit_norm) as f32, (ft / entry) as f32, 0.0, 1.0];
-        let t = SLAB_FIRST_MM * 2f64.powf(u * SLAB_SPAN);
-        let slab = subsurface::slab_packed(&p, t);
-        texels[(LUT_V + 1) * LUT_U + i] = [slab.x as f32, slab.y as f32, slab.z as f32, 1.0];
-    }
     // log2 M: the shader's exp2 is one instruction.
-    let log2 = |v: f64| (v / std::f64::consts::LN_2) as f32;
-    for (t, ln_m) in texels.iter_mut().zip(sphere_rows(m, budget, threads)) {
-        *t = [log2(ln_m[0]), log2(ln_m[1]), log2(ln_m[2]), 1.0];
-    }
-    Lut { texels }
+    let rows: Vec<[f64; 3]> = sphere_rows(m, budget, threads)
+        .iter()
+        .map(|ln| ln.map(|v| v / std::f64::consts::LN_2))
+        .collect();
+    preintegrated::lut_from(&rows, b, m)
 }
 
 #[cfg(test)]

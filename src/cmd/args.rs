@@ -117,6 +117,11 @@ pub fn parse_seed(s: &str) -> Result<u64, String> {
     int_in(s, 0, u64::MAX)
 }
 
+/// `bench tables --materials`: 1 to 1000.
+pub fn parse_material_count(s: &str) -> Result<usize, String> {
+    int_in(s, 1, 1000)
+}
+
 /// A clip or vertex index, 0..=[`MAX_INDEX`] (the model says which exist).
 pub fn parse_index(s: &str) -> Result<usize, String> {
     int_in(s, 0, MAX_INDEX)

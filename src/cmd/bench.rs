@@ -60,6 +60,9 @@ pub enum BenchKind {
     Effects(crate::cmd::bench_effects::EffectsArgs),
     /// Every model on the scanned head against its cached Monte Carlo truth (`dermis reference --scene head`).
     Face(crate::cmd::bench_face::FaceArgs),
+    /// Every material's tables and LUT from the shipped grids against direct Monte Carlo
+    /// bakes: the largest relative difference per table, and the grids' CPU time per material.
+    Tables(crate::cmd::bench_tables::TablesArgs),
 }
 
 pub fn run(args: BenchArgs) -> Result<(), String> {
@@ -78,6 +81,7 @@ pub fn run(args: BenchArgs) -> Result<(), String> {
         BenchKind::Textures(args) => crate::cmd::bench_textures::run(args),
         BenchKind::Shading(args) => crate::cmd::bench_shading::run(*args),
         BenchKind::Effects(args) => crate::cmd::bench_effects::run(args),
+        BenchKind::Tables(args) => crate::cmd::bench_tables::run(args),
         BenchKind::Face(args) => crate::cmd::bench_face::run(args),
     }
 }

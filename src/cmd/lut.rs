@@ -1,7 +1,9 @@
 //! `dermis lut`: bakes what the core ships in `assets/sss/`: the A ↔ α' table
-//! (`albedo.table`, `dermis_engine::shading::albedo`), the spatial models' tables and the
+//! (`albedo.table`, `dermis_engine::shading::albedo`), the presets' spatial-model tables and
 //! pre-integrated skin LUTs (`<material>-eta<η>.tables` and `.lut`, see
-//! `dermis_engine::shading::bake` and `dermis_engine::shading::preintegrated`).
+//! `dermis_engine::shading::bake` and `dermis_engine::shading::preintegrated`), and with
+//! `--grid` the nondimensional grids every other material's tables and LUT are interpolated
+//! from (`optics.tables`, `optics.lut`: `dermis_engine::shading::grid`, `sphere_grid`).
 
 use std::path::PathBuf;
 use std::time::Instant;
@@ -28,6 +30,71 @@ pub struct LutArgs {
     /// a change to the slab or kernel bake re-makes).
     #[arg(long, conflicts_with_all = ["tables_only", "albedo_only"])]
     pub no_albedo: bool,
+    /// Only the nondimensional grids every non-preset material's tables come from: `tables`
+    /// (`optics.tables`: kernel, q(μ), δ(μ), slabs), `spheres` (`optics.lut`: the
+    /// pre-integration sphere rows) or `all` (~2 h on 2 shared cores; deterministic).
+    #[arg(long, value_parser = parse_grid, conflicts_with_all = ["tables_only", "albedo_only", "no_albedo"])]
+    pub grid: Option<Grid>,
+}
+
+/// Which grid `dermis lut --grid` bakes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Grid {
+    Tables,
+    Spheres,
+    All,
+}
+
+fn parse_grid(s: &str) -> Result<Grid, String> {
+    match s {
+        "tables" => Ok(Grid::Tables),
+        "spheres" => Ok(Grid::Spheres),
+        "all" => Ok(Grid::All),
+        _ => Err(format!("unknown grid `{s}` (known: tables, spheres, all)")),
+    }
+}
+
+/// Bakes the grids (`--grid`).
+fn bake_grids(out: &std::path::Path, which: Grid, threads: usize) -> Result<(), String> {
+    use dermis_engine::shading::grid::GRID_BUDGET;
+    use dermis_engine::shading::sphere_grid;
+    use dermis_measure::grid;
+    let write = |name: &str, bytes: Vec<u8>, start: Instant, what: String| {
+        let path = out.join(name);
+        std::fs::write(&path, &bytes)
+            .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        println!(
+            "{} ({} bytes, {:.0} s wall; {what})",
+            path.display(),
+            bytes.len(),
+            start.elapsed().as_secs_f64()
+        );
+        Ok::<(), String>(())
+    };
+    if which != Grid::Spheres {
+        let start = Instant::now();
+        let total = dermis_engine::shading::grid::S_COUNT * dermis_engine::shading::grid::ETA_COUNT;
+        let mut progress = Progress::new("lut grid tables", total as u64);
+        progress.begin("tables grid: one node (s, η) at a time");
+        let g = grid::bake_tables(&GRID_BUDGET, threads, |d, n| {
+            progress.step(&format!("node {d}/{n}"))
+        });
+        progress.finish();
+        let what = format!("{} nodes (s × η)", g.nodes.len());
+        write("optics.tables", g.to_bytes(), start, what)?;
+    }
+    if which != Grid::Tables {
+        let start = Instant::now();
+        let mut progress = Progress::new("lut grid spheres", sphere_grid::rows() as u64);
+        progress.begin("sphere grid: one row (η, s, R̂) at a time");
+        let g = grid::bake_spheres(&GRID_BUDGET, threads, |d, n| {
+            progress.step(&format!("row {d}/{n}"))
+        });
+        progress.finish();
+        let what = format!("{} rows (η × s × R̂)", sphere_grid::rows());
+        write("optics.lut", g.to_bytes(), start, what)?;
+    }
+    Ok(())
 }
 
 /// Bakes the A ↔ α' table (`albedo.table`).
@@ -68,6 +135,9 @@ pub fn run(args: LutArgs) -> Result<(), String> {
     // Checked before minutes of Monte Carlo, not after.
     check_out_dir(&args.out)?;
     let threads = threads();
+    if let Some(which) = args.grid {
+        return bake_grids(&args.out, which, threads);
+    }
     if !(args.tables_only || args.no_albedo) {
         bake_albedo(&args.out, threads)?;
     }

@@ -5,6 +5,7 @@ pub mod bench_effects;
 pub mod bench_face;
 pub mod bench_face_sweep;
 pub mod bench_shading;
+pub mod bench_tables;
 pub mod bench_textures;
 pub mod chart;
 pub mod face_diagnosis;

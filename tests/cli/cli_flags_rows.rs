@@ -243,6 +243,7 @@ pub const ROWS: &[Row] = &[
     row("lut", "tables-only", Kind::Switch),
     row("lut", "albedo-only", Kind::Switch),
     row("lut", "no-albedo", Kind::Switch),
+    row("lut", "grid", Kind::Name),
     row("albedo", "eta", Kind::NumberList),
     row("albedo", "g", G),
     row("albedo", "photons", Kind::Count),
@@ -317,6 +318,9 @@ pub const ROWS: &[Row] = &[
     ),
     row("bench textures", "rounds", Kind::Count),
     row("bench textures", "json", Kind::Switch),
+    row("bench tables", "json", Kind::Switch),
+    row("bench tables", "out", Kind::OutFile { ext: Some("json") }),
+    row("bench tables", "materials", Kind::Count),
     row("bench face", "out", Kind::OutDir),
     with(
         "bench face",

@@ -20,9 +20,10 @@
 //!   at normal incidence from behind, at thicknesses 0.25·2^k mm; past a diffusion length,
 //!   where too few photons get through to measure it, diffusion's e^{−σ_tr d} carries on.
 //!
-//! A material no shipped file covers (the measurement commands' `--eta`, `--g`) is baked by
-//! the [`Baker`] the measurement crate installs; without one (the APK, whose materials are the
-//! shipped presets) the nearest shipped tables stand in, with a warning.
+//! A material no shipped file covers (any file's skin, the measurement commands' `--eta`,
+//! `--g`) takes tables interpolated from the shipped nondimensional grid ([`super::grid`]), on
+//! the desktop and the phone alike; a direct Monte Carlo bake ([`Baker`]) only where a command
+//! or a test installs one.
 
 use std::sync::{Arc, Mutex, OnceLock};
 
@@ -180,6 +181,22 @@ pub fn file_name(m: &Material) -> String {
 
 const MAGIC: &[u8; 8] = b"DERMTAB1";
 
+/// A budget's fields as the headers of the shipped files record them.
+pub fn budget_values(budget: &Budget) -> [f64; 9] {
+    [
+        budget.kernel,
+        budget.oblique,
+        budget.slab,
+        budget.kernel_events,
+        budget.events,
+        budget.max_events,
+        budget.min_photons,
+        budget.sphere,
+        budget.sphere_events,
+    ]
+    .map(|v| v as f64)
+}
+
 /// What a shipped file was baked from: the material's optics and the budget (the start of
 /// every shipped file's header: these tables' and the sphere LUTs').
 pub fn baked_from(m: &Material, budget: &Budget) -> Vec<f64> {
@@ -187,20 +204,7 @@ pub fn baked_from(m: &Material, budget: &Budget) -> Vec<f64> {
     h.extend(m.sigma_a);
     h.extend(m.sigma_s_prime);
     h.extend([m.eta, m.g]);
-    h.extend(
-        [
-            budget.kernel,
-            budget.oblique,
-            budget.slab,
-            budget.kernel_events,
-            budget.events,
-            budget.max_events,
-            budget.min_photons,
-            budget.sphere,
-            budget.sphere_events,
-        ]
-        .map(|v| v as f64),
-    );
+    h.extend(budget_values(budget));
     h
 }
 
@@ -258,14 +262,20 @@ impl Bake {
     }
 }
 
-/// Bakes the tables of a material no shipped file covers (installed by the measurement
-/// crate: `dermis_measure::bake::install`).
+/// Bakes one material's tables directly by the Monte Carlo (installed by the measurement
+/// crate, `dermis_measure::bake::install`, only where a command or a test asks for a direct
+/// bake: the grid's yardstick).
 pub type Baker = fn(&Material) -> Bake;
 static BAKER: OnceLock<Baker> = OnceLock::new();
 
-/// Installs the baker for unshipped materials (the first installation wins).
+/// Installs the direct baker (the first installation wins).
 pub fn install_baker(baker: Baker) {
     let _ = BAKER.set(baker);
+}
+
+/// Whether a direct baker is installed.
+pub fn direct() -> bool {
+    BAKER.get().is_some()
 }
 
 type Cache = Mutex<Vec<(Material, Arc<Bake>)>>;
@@ -278,9 +288,33 @@ pub fn shipped(m: &Material) -> Option<Bake> {
         .find_map(|b| Bake::from_bytes(b, m, &DEFAULT_BUDGET))
 }
 
-/// The tables for `m`, cached for the process: the shipped ones, else the installed
-/// [`Baker`]'s, else (logged) the shipped tables of the preset of the same name with the
-/// nearest η.
+/// Where a material's tables come from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Source {
+    /// A shipped file baked for exactly these optics (the presets).
+    Shipped,
+    /// The installed direct [`Baker`] (the Monte Carlo, where a command asked for it).
+    Direct,
+    /// Interpolated from the shipped nondimensional grid ([`super::grid`]).
+    Grid,
+}
+
+/// Where [`for_material`] takes `m`'s tables from.
+pub fn source(m: &Material) -> Source {
+    if shipped(m).is_some() {
+        Source::Shipped
+    } else if direct() {
+        Source::Direct
+    } else {
+        Source::Grid
+    }
+}
+
+/// The tables for `m`, cached for the process: the shipped file baked for exactly these
+/// optics, else the installed direct [`Baker`]'s (only where a command asked for a direct
+/// bake), else interpolated from the shipped grid ([`super::grid`]: every material, well
+/// under a millisecond, no Monte Carlo). Were the grid unreadable (a test rules it out) the
+/// tables are empty (logged once by the grid): the spatial models render black, not wrong.
 pub fn for_material(m: &Material) -> Arc<Bake> {
     let mut cache = CACHE.lock().unwrap_or_else(|e| e.into_inner());
     if let Some((_, b)) = cache.iter().find(|(k, _)| k == m) {
@@ -289,29 +323,22 @@ pub fn for_material(m: &Material) -> Arc<Bake> {
     let bake = Arc::new(match (shipped(m), BAKER.get()) {
         (Some(b), _) => b,
         (None, Some(baker)) => baker(m),
-        (None, None) => nearest_shipped(m),
+        (None, None) => from_grid(m),
     });
     cache.push((m.clone(), bake.clone()));
     bake
 }
 
-/// The stand-in for an unshipped material without a baker.
-fn nearest_shipped(m: &Material) -> Bake {
-    let presets = super::material::PRESETS;
-    let same_name = presets.iter().find(|p| p.name == m.name);
-    let preset = same_name.unwrap_or(&presets[0]);
-    log::warn!(
-        "no shipped subsurface tables for {} (η {}, g {}): using {}'s (`dermis lut`)",
-        m.name,
-        m.eta,
-        m.g,
-        preset.name
-    );
-    shipped(preset).unwrap_or_else(|| Bake {
-        edges: ring_edges(m),
-        mass: vec![[0.0; 3]; RINGS + 1],
-        oblique: [[1.0; 3]; OBLIQUE_NODES],
-        shift: [[0.0; 3]; OBLIQUE_NODES],
-        slab: [[0.0; 3]; SLAB_NODES],
-    })
+/// `m`'s tables interpolated from the shipped grid (empty tables if it is unreadable).
+pub fn from_grid(m: &Material) -> Bake {
+    match super::grid::shipped() {
+        Some(grid) => grid.bake(m),
+        None => Bake {
+            edges: ring_edges(m),
+            mass: vec![[0.0; 3]; RINGS + 1],
+            oblique: [[1.0; 3]; OBLIQUE_NODES],
+            shift: [[0.0; 3]; OBLIQUE_NODES],
+            slab: [[0.0; 3]; SLAB_NODES],
+        },
+    }
 }

@@ -9,8 +9,10 @@
 //! bright for R ≥ 20 mm, 2–4× too dark for R = 5 mm: a ball confines the light a half-space
 //! lets go, and light near the terminator escapes before it gets far). The rows here are the
 //! project's Monte Carlo sphere walker itself (`dermis_measure::mc::sphere_with`), the
-//! transport of the reference scenes, baked offline (`dermis_measure::lut`; shipped:
-//! [`SHIPPED`]) because it takes minutes. Axes: u = (n·l + 1)/2, v = R0/(R0 + ρ) (v = 0: flat).
+//! transport of the reference scenes, baked offline because it takes minutes: for the presets
+//! per material ([`SHIPPED`]), for every other material over a nondimensional grid
+//! ([`super::sphere_grid`], `assets/sss/optics.lut`) the rows are interpolated from.
+//! Axes: u = (n·l + 1)/2, v = R0/(R0 + ρ) (v = 0: flat).
 //!
 //! A point light's irradiance is blurred on flat ground by lifting the light by s, the height
 //! of the Poisson kernel s/(2π(s² + r²)^{3/2}) with the kernel's median radius (√3 s): Poisson
@@ -128,12 +130,13 @@ impl Lut {
 type Cache = Mutex<Vec<(Material, Arc<Lut>)>>;
 static CACHE: Cache = Mutex::new(Vec::new());
 
-/// Bakes the LUT of a material no shipped file covers (installed by the measurement crate:
-/// `dermis_measure::bake::install`; the sphere rows take minutes).
+/// Bakes one material's LUT directly by the Monte Carlo (installed by the measurement crate,
+/// `dermis_measure::bake::install`, only where a command or a test asks for a direct bake;
+/// the sphere rows take minutes).
 pub type LutBaker = fn(&Material, &Bake) -> Lut;
 static BAKER: OnceLock<LutBaker> = OnceLock::new();
 
-/// Installs the LUT baker for unshipped materials (the first installation wins).
+/// Installs the direct LUT baker (the first installation wins).
 pub fn install_baker(baker: LutBaker) {
     let _ = BAKER.set(baker);
 }
@@ -145,9 +148,44 @@ pub fn shipped(m: &Material) -> Option<Lut> {
         .find_map(|b| Lut::from_bytes(b, m, &bake::DEFAULT_BUDGET))
 }
 
-/// The LUT texture for `m`, cached for the process: the shipped rows, else the installed
-/// [`LutBaker`]'s (logged: the sphere rows take a while), else (logged) the shipped LUT of the
-/// preset of the same name; then the penumbra row ([`PENUMBRA_ROW`]), made from `m`'s kernel.
+/// The LUT of `m` from its sphere rows `rows` (log2 M per texel and channel, the first
+/// [`LUT_V`] rows) and tables `b`: the rows, then the two factor rows ([`LUT_ROWS`]).
+pub fn lut_from(rows: &[[f64; 3]], b: &Bake, m: &Material) -> Lut {
+    let mut texels = vec![[0.0f32; 4]; LUT_U * LUT_ROWS];
+    let p = params_from(b, m).pack();
+    let exit_norm = 1.0 / (std::f64::consts::PI * subsurface::exit_normalisation(m.eta));
+    let entry = super::fresnel::transmittance_shader(m.eta, 1.0).max(1e-12);
+    for i in 0..LUT_U {
+        let u = i as f64 / (LUT_U - 1) as f64;
+        let ft = super::fresnel::transmittance_shader(m.eta, u);
+        texels[LUT_V * LUT_U + i] = [(ft * exit_norm) as f32, (ft / entry) as f32, 0.0, 1.0];
+        let t = bake::SLAB_FIRST_MM * 2f64.powf(u * SLAB_SPAN);
+        let slab = subsurface::slab_packed(&p, t);
+        texels[(LUT_V + 1) * LUT_U + i] = [slab.x as f32, slab.y as f32, slab.z as f32, 1.0];
+    }
+    for (t, v) in texels.iter_mut().zip(rows.iter().take(LUT_V * LUT_U)) {
+        *t = [v[0] as f32, v[1] as f32, v[2] as f32, 1.0];
+    }
+    Lut { texels }
+}
+
+/// `m`'s LUT (without the penumbra row) from the shipped grids: the sphere rows interpolated
+/// by [`super::sphere_grid`] (dark rows if a grid is unreadable, which a test rules out), the
+/// factor rows from `m`'s tables.
+pub fn from_grid(m: &Material) -> Lut {
+    let b = bake::for_material(m);
+    let rows = match (super::sphere_grid::shipped(), super::grid::shipped()) {
+        (Some(spheres), Some(tables)) => spheres.rows(m, tables),
+        _ => vec![[-40.0; 3]; LUT_V * LUT_U],
+    };
+    lut_from(&rows, &b, m)
+}
+
+/// The LUT texture for `m`, cached for the process: the shipped LUT baked for exactly these
+/// optics, else the installed direct [`LutBaker`]'s (only where a command asked for a direct
+/// bake; logged: the sphere rows take minutes), else the rows interpolated from the shipped
+/// grid ([`from_grid`]: milliseconds, no Monte Carlo); then the penumbra row
+/// ([`PENUMBRA_ROW`]), made from `m`'s kernel.
 pub fn lut(m: &Material) -> Arc<Lut> {
     let mut cache = CACHE.lock().unwrap_or_else(|e| e.into_inner());
     if let Some((_, l)) = cache.iter().find(|(k, _)| k == m) {
@@ -157,28 +195,13 @@ pub fn lut(m: &Material) -> Arc<Lut> {
         (Some(l), _) => l,
         (None, Some(baker)) => {
             log::info!(
-                "preintegrated: baking the sphere LUT of {} (η {}, no shipped table)",
+                "preintegrated: baking the sphere LUT of {} (η {}) directly (Monte Carlo)",
                 m.name,
                 m.eta
             );
             baker(m, &bake::for_material(m))
         }
-        (None, None) => {
-            let presets = super::material::PRESETS;
-            let preset = presets
-                .iter()
-                .find(|p| p.name == m.name)
-                .unwrap_or(&presets[0]);
-            log::warn!(
-                "preintegrated: no shipped LUT for {} (η {}): using {}'s (`dermis lut`)",
-                m.name,
-                m.eta,
-                preset.name
-            );
-            shipped(preset).unwrap_or_else(|| Lut {
-                texels: vec![[0.0, 0.0, 0.0, 1.0]; LUT_U * LUT_ROWS],
-            })
-        }
+        (None, None) => from_grid(m),
     };
     texture
         .texels

@@ -42,6 +42,7 @@ mod linalg;
 mod quadrature;
 
 pub use quadrature::gauss_legendre01;
+
 #[cfg(test)]
 mod tests;
 
@@ -314,4 +315,36 @@ fn half_space_albedo(
     } else {
         0.0
     }
+}
+
+/// The rate (mm⁻¹) at which light decays deep in a medium with absorption `sigma_a` and
+/// reduced scattering `sigma_s_prime` (isotropic scattering in the similar medium): κσ'_t,
+/// with κ the root of ω'/(2κ) ln((1 + κ)/(1 − κ)) = 1 in (0, 1), ω' = σ'_s/σ'_t (Case's
+/// discrete eigenvalue of transport theory). Diffusion's σ_tr = √(3σ_a σ'_t) is its limit as
+/// ω' → 1; a dark medium decays slower than diffusion says (skin-dark's blue: 1.45 against
+/// 1.90 mm⁻¹), toward σ'_t as ω' → 0. No scattering: σ_a; no absorption: 0.
+pub fn asymptotic_decay(sigma_a: f64, sigma_s_prime: f64) -> f64 {
+    let t = sigma_a + sigma_s_prime;
+    if t.is_nan() || t <= 0.0 || t.is_infinite() {
+        return 0.0;
+    }
+    let w = (sigma_s_prime / t).clamp(0.0, 1.0);
+    if w <= 0.0 {
+        return t;
+    }
+    if w >= 1.0 {
+        return 0.0;
+    }
+    // f(κ) = ω' artanh(κ)/κ − 1 rises from ω' − 1 < 0 at κ → 0 to +∞ at κ → 1.
+    let f = |k: f64| w * k.atanh() / k - 1.0;
+    let (mut lo, mut hi) = (1e-12_f64, 1.0 - 1e-16);
+    for _ in 0..200 {
+        let k = 0.5 * (lo + hi);
+        if f(k) > 0.0 {
+            hi = k;
+        } else {
+            lo = k;
+        }
+    }
+    0.5 * (lo + hi) * t
 }
