@@ -43,7 +43,7 @@ pub fn sphere_rows(m: &Material, budget: &Budget, threads: usize) -> Vec<[f64; 3
 }
 
 /// Row `j`, channel `c` of [`sphere_rows`].
-fn sphere_row(m: &Material, j: usize, c: usize, budget: &Budget, threads: usize) -> Vec<f64> {
+pub fn sphere_row(m: &Material, j: usize, c: usize, budget: &Budget, threads: usize) -> Vec<f64> {
     const SEED: u64 = 0x5EED_5F4E;
     let med = crate::bake::medium(m, c);
     let seed = SEED + 1000 * c as u64 + j as u64;

@@ -31,6 +31,9 @@ pub const ETA_COUNT: usize = 4;
 const LOG2_MIN: f64 = -48.0;
 const STEPS: f64 = 1024.0;
 
+/// How many s nodes this grid has ([`s_indices`]).
+pub const S_NODES: usize = (grid::S_COUNT - 1).div_ceil(2) + 1;
+
 /// The tables grid's s nodes this grid has: every other, and the last.
 pub fn s_indices() -> Vec<usize> {
     let mut v: Vec<usize> = (0..grid::S_COUNT - 1).step_by(2).collect();
@@ -74,7 +77,7 @@ fn header(budget: &Budget) -> Vec<f64> {
 
 /// Rows per grid: (η nodes) × (s nodes) × (radii).
 pub fn rows() -> usize {
-    ETA_COUNT * s_indices().len() * R_COUNT
+    ETA_COUNT * S_NODES * R_COUNT
 }
 
 /// The code of log2 M (clamped to the code's range).
@@ -91,7 +94,7 @@ fn decode(code: u16) -> f64 {
 impl SphereGrid {
     /// Row number of (η node e, s node i, radius k); its codes start at LUT_U times it.
     pub fn row(e: usize, i: usize, k: usize) -> usize {
-        (e * s_indices().len() + i) * R_COUNT + k
+        (e * S_NODES + i) * R_COUNT + k
     }
 
     pub fn to_bytes(&self) -> Vec<u8> {
@@ -191,6 +194,7 @@ mod tests {
 
     #[test]
     fn codes_round_trip_to_a_step_and_the_file_refuses_other_layouts() {
+        assert_eq!(s_indices().len(), S_NODES);
         for v in [-40.0, -3.21, 0.0, 2.5] {
             assert!((decode(encode(v)) - v).abs() <= 0.5 / STEPS);
         }
