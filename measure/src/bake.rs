@@ -210,7 +210,11 @@ pub fn measure_channel(
 /// material (the presets' shipped files; every other material's tables are interpolated from
 /// the grid, [`crate::grid`], whose yardstick this is).
 pub fn measure(m: &Material, budget: Budget, threads: usize) -> Bake {
-    const SEED: u64 = 0x5EED_BA4E;
+    measure_seeded(m, budget, threads, 0x5EED_BA4E)
+}
+
+/// [`measure`] with other seeds (derived from `seed`): the same bake's noise.
+pub fn measure_seeded(m: &Material, budget: Budget, threads: usize, seed: u64) -> Bake {
     let edges = ring_edges(m);
     let x_max = *edges.last().unwrap_or(&10.0);
     let thicknesses = direct_thicknesses();
@@ -224,7 +228,7 @@ pub fn measure(m: &Material, budget: Budget, threads: usize) -> Bake {
     let mut slab = [[0.0; 3]; SLAB_NODES];
     let mut shift = [[0.0; 3]; OBLIQUE_NODES];
     for c in 0..3 {
-        let seed = SEED + 1000 * c as u64;
+        let seed = seed + 1000 * c as u64;
         let ch = measure_channel(&medium(m, c), &at, &budget, seed, threads);
         for (k, v) in ch.mass.iter().enumerate() {
             mass[k][c] = *v;

@@ -83,9 +83,9 @@ pub fn bake_tables(
 }
 
 /// One row of the sphere grid: the codes of log2 M per band for η node `e`, s node `i` (of
-/// [`sphere_grid::s_indices`]), radius `k`.
+/// [`sphere_grid::s_node`]), radius `k`.
 pub fn sphere_node(e: usize, i: usize, k: usize, budget: &Budget, threads: usize) -> Vec<u16> {
-    let s = s_node(sphere_grid::s_indices()[i]);
+    let s = sphere_grid::s_node(i);
     let med = node_medium(s, sphere_grid::eta_node(e));
     let seed = SPHERES_SEED + 7919 * SphereGrid::row(e, i, k) as u64;
     crate::lut::sphere_run(&med, r_node(k), 3f64.sqrt() * s, budget, seed, threads)
@@ -100,7 +100,7 @@ pub fn bake_spheres(
     threads: usize,
     mut progress: impl FnMut(usize, usize),
 ) -> SphereGrid {
-    let n_s = sphere_grid::s_indices().len();
+    let n_s = sphere_grid::S_NODES;
     let total = sphere_grid::rows();
     let mut codes = Vec::with_capacity(total * LUT_U);
     let mut done = 0;
@@ -171,8 +171,9 @@ fn worst(pairs: impl Iterator<Item = (f64, f64)>, keep: impl Fn(f64) -> bool) ->
         .fold(0.0, f64::max)
 }
 
-/// The grid's tables `g` and LUT `gl` against the direct bake's `d` and `dl`.
-pub fn difference(g: &Bake, d: &Bake, gl: &Lut, dl: &Lut) -> Difference {
+/// The grid's tables `g` and LUT `gl` against the direct bake's `d` and `dl` (the sphere rows'
+/// differences NaN without LUTs).
+pub fn difference(g: &Bake, d: &Bake, luts: Option<(&Lut, &Lut)>) -> Difference {
     let per_channel = |f: &dyn Fn(usize) -> f64| (0..3).map(f).fold(0.0, f64::max);
     let rings = per_channel(&|c| {
         let total: f64 = d.mass.iter().map(|m| m[c]).sum();
@@ -202,6 +203,18 @@ pub fn difference(g: &Bake, d: &Bake, gl: &Lut, dl: &Lut) -> Difference {
     });
     let median_radius = per_channel(&|c| (g.median_radius(c) / d.median_radius(c) - 1.0).abs());
     let (mut sphere_max, mut sum, mut n) = (0.0f64, 0.0f64, 0usize);
+    let Some((gl, dl)) = luts else {
+        return Difference {
+            total,
+            rings,
+            median_radius,
+            q_mu,
+            shift_mu,
+            slab,
+            sphere_max: f64::NAN,
+            sphere_mean: f64::NAN,
+        };
+    };
     for j in 0..LUT_V {
         for c in 0..3 {
             let peak = (0..LUT_U).map(|i| dl.at(i, j, c)).fold(f32::MIN, f32::max);
@@ -226,13 +239,15 @@ pub fn difference(g: &Bake, d: &Bake, gl: &Lut, dl: &Lut) -> Difference {
 }
 
 /// `m`'s tables and LUT (sphere and factor rows) from the shipped grids alone, whatever
-/// shipped file or direct baker there is (`None` if a grid is unreadable).
-pub fn interpolated(m: &Material) -> Option<(Bake, Lut)> {
+/// shipped file or direct baker there is (`None` if the tables grid is unreadable; no LUT if
+/// the sphere grid is).
+pub fn interpolated(m: &Material) -> Option<(Bake, Option<Lut>)> {
     let tables = grid::shipped()?;
-    let spheres = sphere_grid::shipped()?;
     let b = tables.bake(m);
-    let rows = spheres.rows(m, tables);
-    let lut = preintegrated::lut_from(&rows, &b, m);
+    let lut = sphere_grid::shipped().map(|spheres| {
+        let rows = spheres.rows(m, tables);
+        preintegrated::lut_from(&rows, &b, m)
+    });
     Some((b, lut))
 }
 
@@ -255,7 +270,7 @@ mod tests {
         let again = TablesGrid::from_bytes(&again.to_bytes(), &GRID_BUDGET).unwrap();
         assert_eq!(again.nodes[0], tables.nodes[TablesGrid::index(i, 4)]);
         let spheres = sphere_grid::shipped().expect("assets/sss/optics.lut matches this build");
-        let (e, i, k) = (2, sphere_grid::s_indices().len() - 1, 0);
+        let (e, i, k) = (2, sphere_grid::S_NODES - 1, 0);
         let at = SphereGrid::row(e, i, k) * LUT_U;
         assert_eq!(
             sphere_node(e, i, k, &GRID_BUDGET, 2),
@@ -283,7 +298,8 @@ mod tests {
             textured: true,
         };
         assert_eq!(bake::source(&m), Source::Grid);
-        let (grid, grid_lut) = interpolated(&m).expect("the shipped grids match this build");
+        let (grid, grid_lut) = interpolated(&m).expect("the shipped tables grid matches this build");
+        let grid_lut = grid_lut.expect("the shipped sphere grid matches this build");
         assert_eq!(*bake::for_material(&m), grid);
         let direct = crate::bake::measure(&m, GRID_BUDGET, 2);
         let j = LUT_V - 1;
@@ -294,7 +310,7 @@ mod tests {
                 direct_lut.texels[j * LUT_U + i][c] = (ln / std::f64::consts::LN_2) as f32;
             }
         }
-        let d = difference(&grid, &direct, &grid_lut, &direct_lut);
+        let d = difference(&grid, &direct, Some((&grid_lut, &direct_lut)));
         let bounds = [
             ("total", d.total, BOUND_TOTAL),
             ("rings", d.rings, BOUND_RINGS),

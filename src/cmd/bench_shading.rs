@@ -58,6 +58,11 @@ pub struct ShadingArgs {
     /// `dermis reference`).
     #[arg(long, value_parser = parse_reference_photons, allow_hyphen_values = true)]
     pub photons: Option<u64>,
+    /// Bake the tables and LUT of every material no preset file covers directly by the Monte
+    /// Carlo (seconds for the tables, a minute or two for the LUT) instead of interpolating
+    /// them from the shipped grids as the game does: the grid's yardstick.
+    #[arg(long)]
+    pub direct_bake: bool,
 }
 
 /// Target of the cost scene.
@@ -183,6 +188,9 @@ fn prepare(args: &ShadingArgs, scored: &Scored) -> Result<(References, Option<Va
 
 pub fn run(args: ShadingArgs) -> Result<(), String> {
     let scored = Scored::of(&args)?;
+    if args.direct_bake {
+        dermis_measure::bake::install();
+    }
     let (sets, mali) = prepare(&args, &scored)?;
     let models = ShadingModel::ALL;
     let scenes: usize = sets.iter().map(|(_, s)| s.entries.len()).sum();

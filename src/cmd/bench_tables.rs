@@ -8,10 +8,10 @@ use std::borrow::Cow;
 use std::path::PathBuf;
 use std::time::Instant;
 
-use dermis_engine::shading::bake::DEFAULT_BUDGET;
+use dermis_engine::shading::bake::{self, DEFAULT_BUDGET};
 use dermis_engine::shading::material::{Origin, PRESETS};
 use dermis_engine::shading::{albedo, edge_spread, preintegrated, Material};
-use dermis_measure::bake::{measure, threads};
+use dermis_measure::bake::{measure, measure_seeded, threads};
 use dermis_measure::grid::{difference, interpolated};
 use dermis_measure::ground_truth::{acceptance_material, test_materials};
 use dermis_measure::lut::bake_lut;
@@ -84,7 +84,7 @@ fn grid_ms(m: &Material, rounds: usize) -> f64 {
     (0..rounds)
         .map(|_| {
             let start = Instant::now();
-            if let Some((b, mut lut)) = interpolated(m) {
+            if let Some((b, Some(mut lut))) = interpolated(m) {
                 lut.texels
                     .extend(edge_spread::lut_row(&b, preintegrated::LUT_U));
                 std::hint::black_box(&lut);
@@ -103,21 +103,39 @@ pub fn run(args: TablesArgs) -> Result<(), String> {
     if let Some(n) = args.materials {
         mats.truncate(n);
     }
-    if interpolated(&mats[0]).is_none() {
-        return Err("the shipped grids do not match this build (`dermis lut --grid all`)".into());
+    let with_lut = match interpolated(&mats[0]) {
+        None => {
+            return Err("the shipped tables grid does not match this build (`dermis lut --grid tables`)".into())
+        }
+        Some((_, lut)) => lut.is_some(),
+    };
+    if !with_lut {
+        eprintln!("bench tables: the shipped sphere grid does not match this build: tables only");
     }
     let mut progress = Progress::new("bench tables", 2 * mats.len() as u64);
     let mut rows: Vec<Value> = Vec::new();
     for m in &mats {
+        // A preset's shipped files are its direct bake at the shipped budget (bit for bit:
+        // `the_shipped_tables_are_what_the_bake_measures`).
         progress.begin(&format!("{} η={} g={}: direct tables", m.name, m.eta, m.g));
-        let direct = measure(m, DEFAULT_BUDGET, threads);
+        let direct = bake::shipped(m).unwrap_or_else(|| measure(m, DEFAULT_BUDGET, threads));
         progress.step(&format!("{} η={} g={}: direct sphere rows", m.name, m.eta, m.g));
-        let direct_lut = bake_lut(&direct, m, &DEFAULT_BUDGET, threads);
+        let direct_lut = with_lut.then(|| {
+            preintegrated::shipped(m)
+                .unwrap_or_else(|| bake_lut(&direct, m, &DEFAULT_BUDGET, threads))
+        });
         progress.step(&format!("{}: compared", m.name));
         let Some((grid, grid_lut)) = interpolated(m) else {
             continue;
         };
-        let d = difference(&grid, &direct, &grid_lut, &direct_lut);
+        let luts = grid_lut.as_ref().zip(direct_lut.as_ref());
+        let d = difference(&grid, &direct, luts);
+        // The direct bake's own noise: the same bake with other seeds (tables only).
+        let again = measure_seeded(m, DEFAULT_BUDGET, threads, 0x5EED_0DD5);
+        let noise = difference(&again, &direct, None);
+        if std::env::var_os("DERMIS_BENCH_DUMP").is_some() {
+            eprintln!("{}: grid {grid:?}\ndirect {direct:?}\nagain {again:?}", m.name);
+        }
         let mut row = json!({
             "material": m.name,
             "eta": m.eta,
@@ -128,6 +146,9 @@ pub fn run(args: TablesArgs) -> Result<(), String> {
         });
         for (k, v) in d.named() {
             row[k] = json!(v);
+        }
+        for (k, v) in noise.named().into_iter().take(6) {
+            row[format!("{k}_noise")] = json!(v);
         }
         rows.push(row);
     }
@@ -164,7 +185,8 @@ fn markdown(rows: &[Value]) -> String {
     let mut s = String::from(
         "Grid against direct bake at the shipped budget: largest relative difference per \
          table, % (rings holding ≥ 1 % of the total, δ > 0.01 mm, T > 1e-6, sphere-row texels \
-         within 2^-6 of the row's peak); grid ms: CPU time for one material's tables and LUT\n\n\
+         within 2^-6 of the row's peak); in parentheses the direct bake's own noise (the same \
+         bake with other seeds); grid ms: CPU time for one material's tables and LUT\n\n\
          | material | η | g | α' | σ'_t mm⁻¹ |",
     );
     for k in keys {
@@ -189,7 +211,11 @@ fn markdown(rows: &[Value]) -> String {
             triple(&r["sigma_t_prime"], 2)
         );
         for k in keys {
-            s += &format!(" {:.2} |", 100.0 * r[k].as_f64().unwrap_or(f64::NAN));
+            let v = 100.0 * r[k].as_f64().unwrap_or(f64::NAN);
+            match r.get(format!("{k}_noise")).and_then(Value::as_f64) {
+                Some(n) => s += &format!(" {v:.1} ({:.1}) |", 100.0 * n),
+                None => s += &format!(" {v:.1} |"),
+            }
         }
         s += &format!(" {:.2} |\n", r["grid_ms"].as_f64().unwrap_or(f64::NAN));
     }

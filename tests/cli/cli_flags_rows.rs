@@ -337,6 +337,7 @@ pub const ROWS: &[Row] = &[
     ),
     row("bench shading", "out", Kind::OutDir),
     row("bench shading", "rounds", Kind::Count),
+    row("bench shading", "direct-bake", Kind::Switch),
     with(
         "bench shading",
         "mali",

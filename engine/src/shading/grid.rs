@@ -13,18 +13,19 @@
 //! the similar medium (σ'_s = σ_s(1 − g), isotropic), as every model of the project does; its
 //! error against the real phase function is measured in `docs/optics.md` §3.
 //!
-//! **Axes.** s = √(1 − α'): [`S_COUNT`] nodes geometric from [`S_FIRST`] to [`S_LAST`] (α'
-//! from 1 − 9·10⁻⁶ to 0.10; dense toward α' → 1, where the length scale 1/σ_tr =
-//! 1/(σ'_t √3 s) changes fastest); clamped below (a whiter channel takes the s = S_FIRST
-//! shapes), and past S_LAST the total falls linearly to 0 at α' = 0. η: t = √(η − 1) on
+//! **Axes.** s = √(1 − α'): [`S_COUNT`] nodes from [`S_FIRST`] to [`S_LAST`] (α' from
+//! 1 − 9·10⁻⁶ to 0.05) equally spaced in w = ln(s/α'): geometric in s toward α' → 1, where
+//! the length scale 1/σ_tr = 1/(σ'_t √3 s) changes fastest, about even in α' toward α' → 0,
+//! where the albedo and the slabs' decay do; clamped below (a whiter channel takes the
+//! s = S_FIRST shapes), and past S_LAST the total falls linearly to 0 at α' = 0. η: t = √(η − 1) on
 //! [`ETA_COUNT`] equally spaced nodes over η 1.0–1.6 ([`eta_node`]; just above η = 1 total
 //! internal reflection sets in and the tables change like √(η − 1)); clamped outside.
 //! Per node: Φ̂ over ρ̂ = 10⁻³·2^{k/5} (k < [`RHO_COUNT`]: to 1.7·10⁴ mean free paths), q and
 //! δ̂ at the oblique nodes, T̂ over τ = 2^{j/2 − 4} (j < [`TAU_COUNT`]: 0.0625–256).
 //!
 //! **Interpolation** (per channel): scalars (the kernel's total, ln of its median radius,
-//! q, δ̂, ln T̂ at the channel's τ) by cubic Lagrange over the four nearest nodes in ln s and
-//! in t; the kernel's shape by displacement: each of the four bracketing nodes' normalised
+//! q, δ̂, and ln T̂ at the channel's τ relative to the asymptotic decay, ln T̂ + κ(s)τ) by cubic
+//! Lagrange over the four nearest nodes in ln s and in t; the kernel's shape by displacement: each of the four bracketing nodes' normalised
 //! cumulative Φ̂/Φ̂(∞), monotone cubic in ln ρ̂, is read at ρ̂ scaled by the ratio of its median
 //! radius to the interpolated one, and the four are blended bilinearly (a kernel whose scale
 //! changes between nodes keeps its shape instead of turning into two bumps). The same f64
@@ -40,10 +41,12 @@ use super::interp::{lagrange4, linear2, monotone};
 use super::transport::asymptotic_decay;
 use super::Material;
 
-/// s nodes: geometric from S_FIRST to S_LAST.
+/// s nodes: equally spaced in w = ln(s/α') (α' = 1 − s²) from S_FIRST to S_LAST: geometric
+/// in s toward α' → 1, where a material's length scale 1/(σ'_t √3 s) changes fastest, and
+/// about even in α' toward α' → 0, where the albedo and the slabs' decay change fastest.
 pub const S_FIRST: f64 = 0.003;
-pub const S_LAST: f64 = 0.95;
-pub const S_COUNT: usize = 16;
+pub const S_LAST: f64 = 0.9747;
+pub const S_COUNT: usize = 20;
 /// η nodes: t = √(η − 1) equally spaced over [0, √(ETA_MAX − 1)].
 pub const ETA_MAX: f64 = 1.6;
 pub const ETA_COUNT: usize = 6;
@@ -54,9 +57,21 @@ pub const RHO_COUNT: usize = 121;
 /// Slab thicknesses τ_j = 2^{j/2 − 4} (mean free paths).
 pub const TAU_COUNT: usize = 25;
 
+/// w = ln(s/α') of s (the s axis' coordinate).
+pub fn s_coordinate(s: f64) -> f64 {
+    (s / (1.0 - s * s)).ln()
+}
+
+/// The s of coordinate w: the root in (0, 1) of e^w s² + s − e^w = 0.
+fn s_of(w: f64) -> f64 {
+    let e = w.exp();
+    2.0 * e / (1.0 + (1.0 + 4.0 * e * e).sqrt())
+}
+
 /// s of node i.
 pub fn s_node(i: usize) -> f64 {
-    S_FIRST * (S_LAST / S_FIRST).powf(i as f64 / (S_COUNT - 1) as f64)
+    let (a, b) = (s_coordinate(S_FIRST), s_coordinate(S_LAST));
+    s_of(a + (b - a) * i as f64 / (S_COUNT - 1) as f64)
 }
 
 /// η of node r of an axis of `count` nodes equally spaced in t = √(η − 1).
@@ -218,7 +233,15 @@ pub fn shipped() -> Option<&'static TablesGrid> {
     .as_ref()
 }
 
-/// The position of `s` on the s axis `nodes` (node units, in ln s; clamped).
+/// The position of `s` on the tables grid's s axis (node units, in w; clamped).
+pub(crate) fn s_index(s: f64) -> f64 {
+    let s = if s.is_finite() { s } else { S_FIRST };
+    let s = s.clamp(S_FIRST, S_LAST);
+    let (a, b) = (s_coordinate(S_FIRST), s_coordinate(S_LAST));
+    ((s_coordinate(s) - a) / (b - a) * (S_COUNT - 1) as f64).clamp(0.0, (S_COUNT - 1) as f64)
+}
+
+/// The position of `s` on an axis of `nodes` (node units, in ln s; clamped).
 pub(crate) fn s_position(s: f64, nodes: &[f64]) -> f64 {
     let s = if s.is_finite() { s } else { nodes[0] };
     let s = s.clamp(nodes[0], nodes[nodes.len() - 1]);
@@ -300,7 +323,7 @@ impl Node {
 impl TablesGrid {
     /// Σ w·value over the 4 × 4 Lagrange window of (ln s, t) around a channel's `s`, `eta`.
     fn scalar(&self, s: f64, eta: f64, value: impl Fn(&Node, f64) -> f64) -> f64 {
-        let (i0, ws) = lagrange4(s_position(s, &s_nodes()), S_COUNT);
+        let (i0, ws) = lagrange4(s_index(s), S_COUNT);
         let (r0, we) = lagrange4(eta_position(eta, ETA_COUNT), ETA_COUNT);
         let mut sum = 0.0;
         for (a, wa) in ws.iter().enumerate() {
@@ -334,14 +357,18 @@ impl TablesGrid {
         let mut oblique = [[0.0; 3]; OBLIQUE_NODES];
         let mut shift = [[0.0; 3]; OBLIQUE_NODES];
         let mut slab = [[0.0; 3]; SLAB_NODES];
-        let nodes_s = s_nodes();
+        let decays: Vec<f64> = s_nodes()
+            .iter()
+            .map(|&s| asymptotic_decay(s * s, 1.0 - s * s))
+            .collect();
+        let decay_at = |sn: f64| decays[s_index(sn).round() as usize];
         for c in 0..3 {
             let (s, st) = channel(m, c);
             let eta = m.eta;
             let total = self.total(s, eta);
             let median = self.scalar(s, eta, |n, _| n.median().ln()).exp();
             // The shape by displacement between the bracketing nodes.
-            let (i, fi) = linear2(s_position(s, &nodes_s), S_COUNT);
+            let (i, fi) = linear2(s_index(s), S_COUNT);
             let (r, fr) = linear2(eta_position(eta, ETA_COUNT), ETA_COUNT);
             let corners = [
                 (i, r, (1.0 - fi) * (1.0 - fr)),
@@ -372,9 +399,14 @@ impl TablesGrid {
             oblique[OBLIQUE_NODES - 1][c] = 1.0;
             shift[OBLIQUE_NODES - 1][c] = 0.0;
             let s_in = s.min(S_LAST);
+            // ln T̂ falls about as −κ(s)τ (κ: the asymptotic decay in mean free paths, which
+            // steepens fast as α' → 0): the nodes' ln T̂ + κτ is what is interpolated, then
+            // the channel's own −κτ is added back.
+            let own = asymptotic_decay(s_in * s_in, 1.0 - s_in * s_in);
             for (k, t) in slab.iter_mut().enumerate() {
                 let tau = st * SLAB_FIRST_MM * (1u32 << k) as f64;
-                let ln = self.scalar(s_in, eta, |n, sn| n.ln_slab(tau, sn));
+                let ln = self.scalar(s_in, eta, |n, sn| n.ln_slab(tau, sn) + decay_at(sn) * tau)
+                    - own * tau;
                 // Past S_LAST the transmittance falls with the total's factor.
                 let darker = self.total(s, eta) / self.total(s_in, eta).max(f64::MIN_POSITIVE);
                 t[c] = (ln.min(0.0).exp() * darker.min(1.0)).max(0.0);
@@ -474,10 +506,15 @@ mod tests {
         assert_eq!(eta_position(0.9, ETA_COUNT), 0.0);
         assert_eq!(eta_position(f64::NAN, ETA_COUNT), 0.0);
         assert_eq!(eta_position(2.0, ETA_COUNT), (ETA_COUNT - 1) as f64);
-        let nodes = s_nodes();
-        for (i, s) in nodes.iter().enumerate() {
-            assert!((s_position(*s, &nodes) - i as f64).abs() < 1e-9);
+        for (i, s) in s_nodes().iter().enumerate() {
+            assert!((s_index(*s) - i as f64).abs() < 1e-9, "{i}");
         }
+        assert!((s_node(0) - S_FIRST).abs() < 1e-15 && (s_node(S_COUNT - 1) - S_LAST).abs() < 1e-12);
+        // Geometric toward white, even in α' toward dark.
+        let alpha = |i: usize| 1.0 - s_node(i) * s_node(i);
+        assert!((s_node(2) / s_node(1) - s_node(1) / s_node(0)).abs() < 0.01);
+        let last = S_COUNT - 1;
+        assert!(((alpha(last - 1) - alpha(last)) / (alpha(last - 2) - alpha(last - 1)) - 1.0).abs() < 0.5);
     }
 
     #[test]

@@ -5,8 +5,8 @@
 //! A LUT row is the exitance per unit beam irradiance of a sphere of radius ρ (mm) in bands of
 //! n·l; for g = 0 it is that of the nondimensional sphere R̂ = σ'_t ρ of the channel's α' and
 //! η ([`super::grid`]). The grid holds log2 of it over the LUT's [`LUT_U`] bands at
-//! R̂ = R_FIRST·2^{k/R_PER_OCTAVE} (k < [`R_COUNT`]), at every other s node of the tables grid
-//! and its last ([`s_indices`]), and at [`ETA_COUNT`] η nodes equally spaced in √(η − 1);
+//! R̂ = R_FIRST·2^{k/R_PER_OCTAVE} (k < [`R_COUNT`]), at [`S_NODES`] s nodes ([`s_node`]: α'
+//! 1 − 9·10⁻⁶ to 0.10), and at [`ETA_COUNT`] η nodes equally spaced in √(η − 1);
 //! each node's row is post-processed as a material's is (noisy lit bands smoothed, holes
 //! filled, the dark tail bounded; `dermis_measure::lut::log_row`). A material's row j,
 //! channel c: cubic Lagrange in ln s and in √(η − 1), cubic Lagrange in ln R̂, on log2 M
@@ -31,14 +31,17 @@ pub const ETA_COUNT: usize = 4;
 const LOG2_MIN: f64 = -48.0;
 const STEPS: f64 = 1024.0;
 
-/// How many s nodes this grid has ([`s_indices`]).
-pub const S_NODES: usize = (grid::S_COUNT - 1).div_ceil(2) + 1;
+/// s nodes: S_FIRST·(S_LAST/S_FIRST)^{2i/15} for i < S_NODES − 1, then S_LAST (≈; geometric in
+/// s: the rows are interpolated relative to the kernel's total, which carries the albedo's
+/// fast change toward α' → 0).
+pub const S_NODES: usize = 9;
+const S_FIRST: f64 = 0.003;
+const S_LAST: f64 = 0.95;
 
-/// The tables grid's s nodes this grid has: every other, and the last.
-pub fn s_indices() -> Vec<usize> {
-    let mut v: Vec<usize> = (0..grid::S_COUNT - 1).step_by(2).collect();
-    v.push(grid::S_COUNT - 1);
-    v
+/// s of node i.
+pub fn s_node(i: usize) -> f64 {
+    let k = if i + 1 >= S_NODES { 15 } else { 2 * i };
+    S_FIRST * (S_LAST / S_FIRST).powf(k as f64 / 15.0)
 }
 
 /// η of node e.
@@ -61,7 +64,7 @@ pub struct SphereGrid {
 const MAGIC: &[u8; 8] = b"DERMSPH2";
 
 fn header(budget: &Budget) -> Vec<f64> {
-    let mut h: Vec<f64> = s_indices().iter().map(|&i| grid::s_node(i)).collect();
+    let mut h: Vec<f64> = (0..S_NODES).map(s_node).collect();
     h.extend((0..ETA_COUNT).map(eta_node));
     h.extend([
         R_FIRST,
@@ -133,9 +136,8 @@ impl SphereGrid {
     /// grid interpolates for the channel (its s nodes are twice as dense; the albedo is what
     /// changes fastest with s, the rows' shape much less).
     pub fn rows(&self, m: &Material, tables: &grid::TablesGrid) -> Vec<[f64; 3]> {
-        // The last s node (α' = 0.10) is one interpolation reads; past it the rows keep their
-        // shape and follow the total.
-        let s_all: Vec<f64> = s_indices().iter().map(|&i| grid::s_node(i)).collect();
+        // Past the last s node (α' = 0.10) the rows keep their shape and follow the total.
+        let s_all: Vec<f64> = (0..S_NODES).map(s_node).collect();
         let mut out = vec![[0.0; 3]; LUT_V * LUT_U];
         let log2_total = |s: f64, eta: f64| tables.total(s, eta).max(1e-12).log2();
         let node_totals: Vec<Vec<f64>> = (0..ETA_COUNT)
@@ -194,7 +196,6 @@ mod tests {
 
     #[test]
     fn codes_round_trip_to_a_step_and_the_file_refuses_other_layouts() {
-        assert_eq!(s_indices().len(), S_NODES);
         for v in [-40.0, -3.21, 0.0, 2.5] {
             assert!((decode(encode(v)) - v).abs() <= 0.5 / STEPS);
         }
