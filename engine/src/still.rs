@@ -151,7 +151,7 @@ impl StillRenderer {
                 pose: &self.pose,
                 world,
             }),
-            props: Some(&self.props),
+            props: &self.props,
             ..FramePacket::new((w, h), view, draw)
         };
         Ok(self.renderer.prepare(gpu, &packet))
@@ -165,7 +165,7 @@ impl StillRenderer {
         shot: &Shot,
     ) -> Result<RgbaImage, String> {
         let frame = self.frame(gpu, assets, shot)?;
-        self.renderer.draw_offscreen(gpu, &self.offscreen, &frame);
+        self.renderer.draw_offscreen(gpu, &self.offscreen, &frame)?;
         Ok(self.offscreen.read(gpu))
     }
 
@@ -177,12 +177,16 @@ impl StillRenderer {
         shot: &Shot,
     ) -> Result<Vec<[f32; 4]>, String> {
         let frame = self.frame(gpu, assets, shot)?;
-        self.renderer.draw_offscreen(gpu, &self.offscreen, &frame);
+        self.renderer.draw_offscreen(gpu, &self.offscreen, &frame)?;
         Ok(self.offscreen.read_f16(gpu))
     }
 
     /// Records `frame` into `encoder` (untimed), into the still's target.
-    pub fn encode(&self, encoder: &mut wgpu::CommandEncoder, frame: &PreparedFrame) {
+    pub fn encode(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        frame: &PreparedFrame,
+    ) -> Result<(), String> {
         self.renderer.encode(
             frame,
             &mut PassCtx {
@@ -191,7 +195,8 @@ impl StillRenderer {
                 output: &self.offscreen.view,
                 timer: None,
             },
-        );
+        )?;
+        Ok(())
     }
 
     /// Renders `shot` with timestamps around its scene passes (the character, and the props
@@ -208,7 +213,8 @@ impl StillRenderer {
                 output: &self.offscreen.view,
                 timer: Some(timer),
             },
-        );
+        )
+        .ok()?;
         timer.resolve(&mut encoder);
         gpu.queue.submit([encoder.finish()]);
         timer.read_ms(&gpu.device)

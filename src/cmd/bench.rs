@@ -305,7 +305,7 @@ fn frame(
         };
         let frame = still.frame(&gpu, &assets, &shot)?;
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
-        still.encode(&mut encoder, &frame);
+        still.encode(&mut encoder, &frame)?;
         let cmd = encoder.finish();
         cpu_ms.push(t.elapsed().as_secs_f64() * 1e3);
         gpu.queue.submit([cmd]);

@@ -336,7 +336,7 @@ impl CostScene {
         let frame = self.renderer.prepare(gpu, &packet);
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
         let timer = self.timer.as_ref().filter(|_| timed);
-        self.renderer.encode(
+        let encoded = self.renderer.encode(
             &frame,
             &mut PassCtx {
                 encoder: &mut encoder,
@@ -345,6 +345,9 @@ impl CostScene {
                 timer,
             },
         );
+        if let Err(e) = encoded {
+            log::error!("{e}");
+        }
         if let Some(timer) = timer {
             timer.resolve(&mut encoder);
         } else {

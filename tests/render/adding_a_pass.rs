@@ -137,12 +137,15 @@ impl Scene {
                 pose: &pose,
                 world: Mat4::IDENTITY,
             }),
-            props: Some(&props),
-            ui: Some(ui.vertices()),
+            props: &props,
+            ui: ui.vertices(),
+            ui_version: ui.version(),
             ..FramePacket::new((160, 120), view, draw)
         };
         let frame = r.prepare(&self.gpu, &packet);
-        let stats = r.draw_offscreen(&self.gpu, &self.target, &frame);
+        let stats = r
+            .draw_offscreen(&self.gpu, &self.target, &frame)
+            .unwrap_or_else(|e| panic!("{e}"));
         (stats, frame.passes.map(|p| p.runs))
     }
 }

@@ -8,6 +8,7 @@ use super::light_maps::{self, LightMaps, SHADOW_MAP_SIZE};
 use super::model_gpu::ModelTable;
 use super::passes::{BuildCtx, Passes};
 use super::pipelines::{CharacterPipelines, PipelineSet};
+use super::prepared::per_frame;
 use super::prop_gpu::PropGpu;
 use super::renderer::{Renderer, Wants};
 use super::resources::{Resources, Subjects};
@@ -50,25 +51,29 @@ fn resources(
     light_maps: Option<LightMaps>,
 ) -> Resources {
     let device = &gpu.device;
-    let frame_buffer = device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("frame"),
-        size: std::mem::size_of::<FrameUniform>() as u64,
-        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
+    let frame_buffers = per_frame(|_| {
+        device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("frame"),
+            size: std::mem::size_of::<FrameUniform>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        })
     });
     let light_defaults = light_maps::Defaults::new(device, &gpu.queue);
-    let frame_group = light_maps::frame_group(
-        device,
-        &layouts,
-        &frame_buffer,
-        light_maps.as_ref(),
-        &light_defaults,
-    );
+    let frame_groups = per_frame(|k| {
+        light_maps::frame_group(
+            device,
+            &layouts,
+            &frame_buffers[k],
+            light_maps.as_ref(),
+            &light_defaults,
+        )
+    });
     Resources {
         layouts,
         sampler,
-        frame_buffer,
-        frame_group,
+        frame_buffers,
+        frame_groups,
         models,
         subjects: Subjects::default(),
         standard: Vec::new(),
@@ -191,6 +196,7 @@ impl Renderer {
             set: set.clone(),
             wants: Wants::default(),
             warned_size: false,
+            prepared: 0,
         };
         renderer.receive_pipelines(None, false);
         renderer

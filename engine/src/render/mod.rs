@@ -36,7 +36,7 @@ mod texture;
 mod timer;
 
 pub use counters::LiveObjects;
-pub use driver::{Allocs, Clock, FrameDriver, FrameOutput, FrameTimes, FrameWork, Output};
+pub use driver::{Allocs, Clock, Frame, FrameDriver, FrameOutput, FrameTimes, Output};
 pub use frame_uniform::{FrameUniform, OutputMode};
 pub use gpu::{Gpu, GpuError};
 pub use layouts::shadow_map_entries;
@@ -49,7 +49,9 @@ pub use passes::shadow_map::caster_shader_source;
 pub use passes::subsurface::SPLIT_FORMAT;
 pub use passes::ui::{ui_shader_source, ui_vertex_layout};
 pub use pipelines::{build_shader_source, shader_source, CharacterPipelines, PipelineSet};
-pub use prepared::{Drawn, PassCtx, PassFrame, PreparedFrame, RenderStats, SubjectDraw};
+pub use prepared::{
+    Drawn, PassCtx, PassFrame, PreparedFrame, RenderStats, SubjectDraw, FRAMES_PREPARED,
+};
 pub use readback::{read_buffer, read_mapped};
 pub use renderer::Renderer;
 pub use shadow_view::{ShadowView, SHADOW_RAMP_TEXELS};

@@ -7,7 +7,8 @@
 //!
 //! The pass exists only in a renderer that enabled the shadows and has a caster loaded; the
 //! split variant only where the scene can reach a screen-space model. Per frame the blobs are
-//! staged into buffers reserved at load and uploaded only when they changed.
+//! staged into buffers reserved at load and uploaded into the frame's copy of the instance
+//! buffer only when that copy holds others.
 
 use crate::render::pipelines::{pipeline_layout, wgsl_module};
 use glam::{Mat4, Vec3};
@@ -16,7 +17,7 @@ use super::subsurface::SPLIT_FORMAT;
 use super::{BuildCtx, Pass, Stage};
 use crate::asset::Model;
 use crate::render::pipelines::PipelineDevice;
-use crate::render::prepared::{Drawn, PassFrame, PreparedFrame};
+use crate::render::prepared::{per_frame, Drawn, PassFrame, PreparedFrame, FRAMES_PREPARED};
 use crate::render::resources::Resources;
 use crate::render::targets::{depth_state, multisample, MSAA_SAMPLES};
 use crate::scene::{CharacterBound, FramePacket, PropInstance, PropKind, CHARACTER};
@@ -178,10 +179,11 @@ pub struct BlobsPass {
     pipeline: wgpu::RenderPipeline,
     /// For frames with the subsurface pass.
     split: Option<wgpu::RenderPipeline>,
-    instances: wgpu::Buffer,
+    /// One per prepared frame's copy, with what it holds.
+    instances: [wgpu::Buffer; FRAMES_PREPARED],
+    uploaded: [Vec<Blob>; FRAMES_PREPARED],
     /// Slot 0: the character's blob; then the props'. Capacity [`MAX_BLOBS`], never grown.
     staged: Vec<Blob>,
-    uploaded: Vec<Blob>,
     /// Whether the blobs are drawn (the pass stays built when they are switched off).
     pub enabled: bool,
 }
@@ -220,11 +222,13 @@ impl BlobsPass {
             };
             pipeline(ctx.pipelines(), &layout, &module, &targets)
         };
-        let instances = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("blob shadows"),
-            size: (MAX_BLOBS * std::mem::size_of::<Blob>()) as u64,
-            usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
+        let instances = per_frame(|_| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("blob shadows"),
+                size: (MAX_BLOBS * std::mem::size_of::<Blob>()) as u64,
+                usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            })
         });
         let mut staged = Vec::with_capacity(MAX_BLOBS);
         staged.push(Blob::default());
@@ -233,7 +237,7 @@ impl BlobsPass {
             split: ctx.set.needs_subsurface_pass().then(|| build(true)),
             instances,
             staged,
-            uploaded: Vec::with_capacity(MAX_BLOBS),
+            uploaded: per_frame(|_| Vec::with_capacity(MAX_BLOBS)),
             enabled: true,
         }
     }
@@ -251,20 +255,20 @@ impl BlobsPass {
         }
     }
 
-    /// Uploads every staged blob if any changed; returns the uploads (0 or 1). A run moves
-    /// the runner every frame but the props only now and then: then only the character's
-    /// slot is written. No allocation: the buffers were reserved at load.
-    fn upload(&mut self, queue: &wgpu::Queue) -> u32 {
-        if self.staged == self.uploaded {
+    /// Uploads the staged blobs into `copy` if it holds others; returns the uploads (0 or
+    /// 1). A run moves the runner every frame but the props only now and then: then only the
+    /// character's slot is written. No allocation: the buffers were reserved at load.
+    fn upload(&mut self, queue: &wgpu::Queue, copy: usize) -> u32 {
+        let uploaded = &mut self.uploaded[copy];
+        if self.staged == *uploaded {
             return 0;
         }
-        let props_same =
-            self.uploaded.len() == self.staged.len() && self.uploaded[1..] == self.staged[1..];
+        let props_same = uploaded.len() == self.staged.len() && uploaded[1..] == self.staged[1..];
         let upload = if props_same { 1 } else { self.staged.len() };
-        self.uploaded.clear();
-        self.uploaded.extend_from_slice(&self.staged);
+        uploaded.clear();
+        uploaded.extend_from_slice(&self.staged);
         queue.write_buffer(
-            &self.instances,
+            &self.instances[copy],
             0,
             bytemuck::cast_slice(&self.staged[..upload]),
         );
@@ -272,9 +276,10 @@ impl BlobsPass {
     }
 
     /// The blobs a frame draws: the props' and, when the subject is drawn, the character's.
-    fn range(&self, frame: &PreparedFrame) -> std::ops::Range<u32> {
+    fn range(frame: &PreparedFrame) -> std::ops::Range<u32> {
         let first = if frame.subject.is_some() { 0 } else { 1 };
-        first..(self.uploaded.len() as u32).max(first)
+        let staged = frame.pass(<Self as super::Slot>::SLOT).steps;
+        first..staged.max(first)
     }
 }
 
@@ -287,8 +292,9 @@ impl Pass for BlobsPass {
         Stage::Scene
     }
 
-    /// Stages the subject's blob where it was placed and the props' where the frame placed
-    /// them; runs when switched on in a frame with props (the blobs lie on the floor).
+    /// Stages the subject's blob where it is placed and the props' where the frame placed
+    /// them; runs when switched on in a frame with props (the blobs lie on the floor);
+    /// `steps`: the blobs staged.
     fn prepare(
         &mut self,
         queue: &wgpu::Queue,
@@ -296,15 +302,17 @@ impl Pass for BlobsPass {
         frame: &mut PreparedFrame,
         res: &Resources,
     ) -> PassFrame {
-        if res.casters.character.is_some() {
-            self.staged[0] = Blob::character(&CHARACTER, res.subjects.world);
+        if let (Some(_), Some(subject)) = (&res.casters.character, &frame.subject) {
+            self.staged[0] = Blob::character(&CHARACTER, subject.world);
         }
-        if let Some(placed) = packet.props {
-            self.stage_props(&res.casters, placed);
+        self.stage_props(&res.casters, packet.props);
+        frame.uploads += self.upload(queue, frame.copy);
+        let staged = self.staged.len() as u32;
+        let first = u32::from(frame.subject.is_none());
+        PassFrame {
+            runs: self.enabled && frame.draw.props && staged > first,
+            steps: staged,
         }
-        frame.uploads += self.upload(queue);
-        let runs = self.enabled && frame.draw.props && !self.range(frame).is_empty();
-        PassFrame { runs, steps: 0 }
     }
 
     /// The blobs, blended over the floor and depth-tested against everything.
@@ -320,8 +328,8 @@ impl Pass for BlobsPass {
             (None, _) => &self.pipeline,
         };
         pass.set_pipeline(pipeline);
-        pass.set_vertex_buffer(0, self.instances.slice(..));
-        pass.draw(0..6, self.range(frame));
+        pass.set_vertex_buffer(0, self.instances[frame.copy].slice(..));
+        pass.draw(0..6, Self::range(frame));
         Drawn::calls(1)
     }
 }

@@ -179,7 +179,9 @@ impl Pass for CharacterPass {
         frame: &mut PreparedFrame,
         res: &Resources,
     ) -> PassFrame {
-        let runs = frame.subject.is_some() && res.subjects.active().is_some();
+        let runs = frame
+            .subject
+            .is_some_and(|d| res.subjects.get(d.slot).is_some());
         PassFrame { runs, steps: 0 }
     }
 
@@ -189,7 +191,10 @@ impl Pass for CharacterPass {
         res: &Resources,
         pass: &mut wgpu::RenderPass<'_>,
     ) -> Drawn {
-        let (Some(subject), Some(drawn)) = (res.subjects.active(), frame.subject) else {
+        let Some(drawn) = frame.subject else {
+            return Drawn::default();
+        };
+        let Some(subject) = res.subjects.get(drawn.slot) else {
             return Drawn::default();
         };
         let Some(group) = res.models.params_group(drawn.shading) else {
@@ -214,7 +219,7 @@ impl Pass for CharacterPass {
                 };
                 let Some(pipeline) = pipeline else { continue };
                 pass.set_pipeline(pipeline);
-                gpu.draw_part(pass, part, true);
+                gpu.draw_part(pass, part, true, frame.copy);
                 out.draw_calls += 1;
                 out.triangles += part.triangles;
             }

@@ -16,7 +16,7 @@ use super::{BuildCtx, Pass, Stage};
 use crate::render::layouts;
 use crate::render::light_maps::{LightMaps, PenumbraGrid};
 use crate::render::pipelines::{pipeline_layout, wgsl_module};
-use crate::render::prepared::{Drawn, PassFrame, PreparedFrame};
+use crate::render::prepared::{per_frame, Drawn, PassFrame, PreparedFrame, FRAMES_PREPARED};
 use crate::render::resources::Resources;
 use crate::scene::FramePacket;
 use crate::shader::uniforms::PenumbraUniform;
@@ -110,11 +110,13 @@ pub struct PenumbraPass {
     seed: wgpu::RenderPipeline,
     jump: wgpu::RenderPipeline,
     uniforms: wgpu::Buffer,
-    /// Per pass (the seed, then one per possible jump): its bind groups reading grid target
-    /// 0 and grid target 1.
-    groups: Vec<[wgpu::BindGroup; 2]>,
-    /// The constants last written (steps, edge gap): unchanged ones are not written again.
-    written: Option<(u32, f32)>,
+    /// Per prepared frame's copy, per pass (the seed, then one per possible jump): its bind
+    /// groups reading grid target 0 and grid target 1.
+    groups: [Vec<[wgpu::BindGroup; 2]>; FRAMES_PREPARED],
+    /// The constants each copy holds (steps, edge gap): unchanged ones are not written again.
+    written: [Option<(u32, f32)>; FRAMES_PREPARED],
+    /// Passes per copy (the seed and every possible jump).
+    passes: u64,
 }
 
 impl PenumbraPass {
@@ -155,7 +157,7 @@ impl PenumbraPass {
         let passes = steps(size).count() + 1;
         let uniforms = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("penumbra passes"),
-            size: SLOT * passes as u64,
+            size: SLOT * (passes * FRAMES_PREPARED) as u64,
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
@@ -195,16 +197,20 @@ impl PenumbraPass {
                 ],
             })
         };
-        let groups = (0..passes as u64)
-            .map(|k| [group(k, &grid.targets[0]), group(k, &grid.targets[1])])
-            .collect();
+        let passes = passes as u64;
+        let groups = per_frame(|copy| {
+            (copy as u64 * passes..(copy as u64 + 1) * passes)
+                .map(|k| [group(k, &grid.targets[0]), group(k, &grid.targets[1])])
+                .collect()
+        });
         Self {
             size,
             seed: pipeline("fs_seed"),
             jump: pipeline("fs_jump"),
             uniforms,
             groups,
-            written: None,
+            written: [None; FRAMES_PREPARED],
+            passes,
         }
     }
 }
@@ -248,7 +254,8 @@ impl Pass for PenumbraPass {
         let shadow = &frame.shadow;
         let gap = edge_gap_m(shadow.texel_m) * shadow.depth_per_m;
         let jumps = jump_steps(self.size, shadow.width_m()).count() as u32;
-        if self.written != Some((jumps, gap)) {
+        let copy = frame.copy;
+        if self.written[copy] != Some((jumps, gap)) {
             let first = std::iter::once(0);
             let all = first.chain(jump_steps(self.size, shadow.width_m()));
             for (k, step) in all.enumerate().take(MAX_PASSES) {
@@ -258,10 +265,11 @@ impl Pass for PenumbraPass {
                     edge_gap: gap,
                     _pad0: 0.0,
                 };
-                queue.write_buffer(&self.uniforms, k as u64 * SLOT, bytemuck::bytes_of(&jump));
+                let at = (copy as u64 * self.passes + k as u64) * SLOT;
+                queue.write_buffer(&self.uniforms, at, bytemuck::bytes_of(&jump));
                 frame.uploads += 1;
             }
-            self.written = Some((jumps, gap));
+            self.written[copy] = Some((jumps, gap));
         }
         let u = &mut frame.uniform;
         u.penumbra_drawn = 1;
@@ -286,7 +294,7 @@ impl Pass for PenumbraPass {
         };
         let jumps = frame.pass(<Self as super::Slot>::SLOT).steps as usize;
         let mut target = jumps % 2;
-        for (k, groups) in self.groups.iter().take(jumps + 1).enumerate() {
+        for (k, groups) in self.groups[frame.copy].iter().take(jumps + 1).enumerate() {
             let seed = k == 0;
             if !seed {
                 target = 1 - target;
