@@ -1,5 +1,6 @@
 //! One still frame rendered offscreen: the `render` command, the image tests and the benches.
 
+use crate::render::passes::PassId;
 use glam::{Mat4, Quat, Vec3};
 
 use crate::anim::Pose;
@@ -83,7 +84,7 @@ impl StillRenderer {
     /// showroom props (drawn only in shots with props); returns whether they exist. Stills
     /// have none unless this is called; `renderer.set_blob_shadows` switches them.
     pub fn enable_blob_shadows(&mut self, gpu: &Gpu) -> bool {
-        self.renderer.enable_blob_shadows(gpu)
+        self.renderer.enable(gpu, PassId::blobs)
     }
 
     /// Poses the character, places camera and light and prepares the frame of `shot`.

@@ -6,12 +6,17 @@
 //! the scene needs what it draws for and not otherwise; in a frame that needs it, it runs and
 //! records (its own count in the frame's statistics), in a frame that does not, it records
 //! nothing; and no source outside its module and the registry names its type, so the frame's
-//! walk reaches it through the row alone.
+//! walk reaches it through the row alone. The table is the only place that lists the passes
+//! (no other render file imports a pass's module; no pass imports another's), and the
+//! frame's order, derived from what each pass declares it creates, reads and writes, is a
+//! valid one.
 
+use dermis_engine::render::passes::PassId;
 use std::path::Path;
 
 use dermis_engine::camera::look_at;
-use dermis_engine::render::passes::{NAMES, PASS_COUNT};
+use dermis_engine::render::graph::{self, Stage, Target};
+use dermis_engine::render::passes::{frame_order, stage, ACCESS, NAMES, PASS_COUNT};
 use dermis_engine::render::{Gpu, Offscreen, PipelineSet, RenderStats, Renderer, OFFSCREEN_FORMAT};
 use dermis_engine::scene::{
     key_light, showroom, DrawSet, FramePacket, FrameView, SceneAssets, SubjectPose, EXPOSURE,
@@ -81,6 +86,65 @@ fn every_row_has_its_module_and_only_its_module_names_it() {
     }
 }
 
+#[test]
+fn the_table_alone_lists_the_passes_and_their_declarations_order_the_frame() {
+    // No render file outside the table imports a pass's module (the renderer's public
+    // shader-source re-exports in render/mod.rs aside), and no pass imports another's.
+    let render = root().join("engine/src/render");
+    let mut files = Vec::new();
+    for dir in [render.clone(), render.join("passes")] {
+        for e in std::fs::read_dir(&dir).unwrap() {
+            let p = e.unwrap().path();
+            if p.extension().is_some_and(|x| x == "rs") {
+                files.push(p);
+            }
+        }
+    }
+    for path in &files {
+        let text = std::fs::read_to_string(path).unwrap();
+        let file = path.file_stem().unwrap().to_str().unwrap();
+        let in_passes = path.parent().unwrap().ends_with("passes");
+        if file == "mod" {
+            continue;
+        }
+        for name in NAMES {
+            if in_passes && file == name {
+                continue;
+            }
+            for import in [format!("passes::{name}"), format!("super::{name}::")] {
+                assert!(
+                    !(text.contains(&import) && (in_passes || import.starts_with("passes"))),
+                    "{} imports the {name} pass's module: passes are reached through the table",
+                    path.display()
+                );
+            }
+        }
+    }
+    // The order derived from the declarations is valid, and puts the light's maps first, the
+    // scene next and the output last.
+    let order = frame_order();
+    graph::check(&ACCESS, order).unwrap_or_else(|e| panic!("{e}"));
+    let stages: Vec<Stage> = order.iter().map(|&s| stage(s)).collect();
+    assert!(stages.windows(2).all(|w| w[0] <= w[1]), "{stages:?}");
+    let at = |name: &str| {
+        let slot = NAMES.iter().position(|n| *n == name).unwrap();
+        order.iter().position(|&s| s == slot).unwrap()
+    };
+    for (name, target) in [("shadow_map", Target::ShadowMap), ("penumbra", Target::PenumbraMap)] {
+        for (reader, access) in NAMES.iter().zip(ACCESS) {
+            if access.reads.contains(&target) && *reader != name {
+                assert!(at(name) < at(reader), "{name} before {reader}");
+            }
+        }
+    }
+    // Every pass writes something, and every transient target has a creator.
+    for (name, access) in NAMES.iter().zip(ACCESS) {
+        assert!(!access.writes.is_empty(), "{name} writes nothing");
+    }
+    let creates_split = ACCESS.iter().filter(|a| a.creates.contains(&Target::Split));
+    assert_eq!(creates_split.count(), 1, "one pass creates the split targets");
+}
+
 /// A renderer with the whole scene (the character, the props, blob shadows, the UI) for
 /// `set`, and one frame of `model` prepared and drawn at 160×120.
 struct Scene {
@@ -107,8 +171,8 @@ impl Scene {
         let assets = &self.assets;
         r.load_scene(gpu, (&assets.character, &assets.roles), &assets.props)
             .unwrap();
-        r.enable_blob_shadows(gpu);
-        r.enable_ui(gpu);
+        r.enable(gpu, PassId::blobs);
+        r.enable(gpu, PassId::ui);
         r.resize(gpu, (160, 120));
         r
     }

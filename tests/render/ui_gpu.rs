@@ -4,6 +4,7 @@
 //! each game screen shows what it says: its labels' glyphs inside their rectangles, its
 //! buttons blue, the background untouched outside the widgets.
 
+use dermis_engine::render::passes::PassId;
 use dermis_engine::render::{Gpu, Offscreen, PipelineSet, RenderStats, Renderer, OFFSCREEN_FORMAT};
 use dermis_engine::scene::{DrawSet, FramePacket, FrameView, Light};
 use dermis_engine::ui::{Insets, Rect, Ui, UiVertex};
@@ -33,7 +34,7 @@ impl UiRig {
         };
         let mut renderer = Renderer::with_pipelines(&gpu, OFFSCREEN_FORMAT, &nothing);
         renderer.set_clear(CLEAR);
-        renderer.enable_ui(&gpu);
+        renderer.enable(&gpu, PassId::ui);
         renderer.resize(&gpu, (width, height));
         let target = Offscreen::new(&gpu, width, height);
         Self {

@@ -6,17 +6,16 @@
 use super::layouts::Layouts;
 use super::light_maps::{self, LightMaps, SHADOW_MAP_SIZE};
 use super::model_gpu::ModelTable;
-use super::passes::{BuildCtx, Passes};
+use super::passes::{BuildCtx, Passes, PASS_COUNT};
 use super::pipelines::{CharacterPipelines, PipelineSet};
 use super::prepared::per_frame;
 use super::prop_gpu::PropGpu;
-use super::renderer::{Renderer, Wants};
+use super::renderer::Renderer;
 use super::resources::{Resources, Subjects};
 use super::skinned::SkinnedGpu;
 use super::{FrameUniform, Gpu};
 use crate::asset::Model;
-use crate::render::passes::blobs::Casters;
-use crate::render::passes::character::standard_keys;
+use crate::render::material_gpu::standard_keys;
 use crate::scene::PropKind;
 use crate::scene::Roles;
 use crate::shading::ShadingModel;
@@ -78,7 +77,6 @@ fn resources(
         subjects: Subjects::default(),
         standard: Vec::new(),
         props: Vec::new(),
-        casters: Casters::default(),
         light_maps,
         occluder: None,
         shadow_fit: None,
@@ -142,9 +140,9 @@ impl Renderer {
             set,
             light_maps: Some(&light_maps),
             occluder: false,
-            props: !props.is_empty(),
-            blobs: false,
-            ui: false,
+            character: true,
+            props: PropKind::ALL.map(|k| props.iter().any(|(p, _)| *p == k)),
+            wanted: [false; PASS_COUNT],
             standard: &standard,
         };
         let compile = || {
@@ -194,7 +192,7 @@ impl Renderer {
             passes,
             pipelines,
             set: set.clone(),
-            wants: Wants::default(),
+            wanted: [false; PASS_COUNT],
             warned_size: false,
             prepared: 0,
         };

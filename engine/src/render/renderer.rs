@@ -12,16 +12,16 @@ use glam::Vec3;
 use super::light_maps::{LightMaps, Occluder, SHADOW_MAP_SIZE};
 use super::model_gpu::PipelineKey;
 use super::offscreen::Offscreen;
-use super::passes::character::standard_keys;
+use super::material_gpu::standard_keys;
 use super::passes::resolve::{self, Timed};
-use super::passes::subsurface::SplitTargets;
-use super::passes::{BuildCtx, Passes, Stage};
+use super::passes::{BuildCtx, PassId, Passes, Stage, Target, PASS_COUNT};
 use super::pipelines::{CharacterPipelines, PipelineSet};
 use super::prepared::{PassCtx, PreparedFrame, RenderStats, SubjectDraw, FRAMES_PREPARED};
 use super::prop_gpu::PropGpu;
 use super::resources::{Resources, Subject};
 use super::shadow_view::ShadowView;
 use super::skinned::SkinnedGpu;
+use super::targets::SplitTargets;
 use super::{FrameUniform, Gpu, OutputMode};
 use crate::asset::Model;
 use crate::scene::{FramePacket, PropKind, Roles, SubjectId, CHARACTER};
@@ -30,20 +30,16 @@ use crate::shading::{Material, ShadingModel};
 /// How much a pose may reach beyond the bind pose's bounding sphere (arms, a jump's tuck).
 const POSE_MARGIN: f32 = 1.25;
 
-/// What the renderer was asked to draw besides the scene's own passes.
-#[derive(Clone, Copy, Debug, Default)]
-pub(super) struct Wants {
-    pub blobs: bool,
-    pub ui: bool,
-}
-
 pub struct Renderer {
     pub(super) res: Resources,
     pub(super) passes: Passes,
     pub(super) pipelines: CharacterPipelines,
     /// The shading models the scene can reach (and the unlit baseline, for benches).
     pub(super) set: PipelineSet,
-    pub(super) wants: Wants,
+    /// The optional passes asked for ([`Self::enable`]), table order.
+    pub(super) wanted: [bool; PASS_COUNT],
+    /// Passes switched off ([`Self::switch`]), table order.
+    pub(super) off: [bool; PASS_COUNT],
     /// A frame asked for a size the renderer was not resized to (logged once).
     pub(super) warned_size: bool,
     /// Frames prepared so far (the next one's `seq`).
@@ -55,7 +51,7 @@ pub(super) fn build_ctx<'a>(
     gpu: &'a Gpu,
     res: &'a Resources,
     set: &'a PipelineSet,
-    wants: Wants,
+    wanted: [bool; PASS_COUNT],
 ) -> BuildCtx<'a> {
     BuildCtx {
         device: &gpu.device,
@@ -66,9 +62,9 @@ pub(super) fn build_ctx<'a>(
         set,
         light_maps: res.light_maps.as_ref(),
         occluder: res.occluder.is_some(),
-        props: !res.props.is_empty(),
-        blobs: wants.blobs && res.casters.any(),
-        ui: wants.ui,
+        character: res.subjects.iter().next().is_some(),
+        props: PropKind::ALL.map(|k| res.props.iter().any(|p| p.kind == k)),
+        wanted,
         standard: &res.standard,
     }
 }
@@ -91,12 +87,12 @@ fn model_sphere(model: &Model) -> Option<(Vec3, f32)> {
 impl Renderer {
     // ---- the frame -------------------------------------------------------------------
 
-    /// Makes the targets that depend on the frame's size (the subsurface pass's), where the
-    /// scene needs any; call when the output's size changes, before preparing a frame of it.
+    /// Makes the transient targets the built passes create (the frame graph's) at the
+    /// frame's size; call when the output's size changes, before preparing a frame of it.
     pub fn resize(&mut self, gpu: &Gpu, (width, height): (u32, u32)) {
         let size = (width.max(1), height.max(1));
         let sized = self.res.split.as_ref().map(|t| t.size);
-        if !self.set.needs_subsurface_pass() || sized == Some(size) {
+        if !self.passes.creates(Target::Split) || sized == Some(size) {
             return;
         }
         self.res.split = Some(SplitTargets::new(&gpu.device, size));
@@ -165,6 +161,9 @@ impl Renderer {
             uploads,
         };
         self.passes.prepare(queue, packet, &mut frame, &self.res);
+        for (pass, off) in frame.passes.iter_mut().zip(self.off) {
+            pass.runs &= !off;
+        }
         queue.write_buffer(
             &self.res.frame_buffers[copy],
             0,
@@ -323,7 +322,7 @@ impl Renderer {
     /// Builds the passes the scene now needs (and again those it made stale), and sizes what
     /// they bind.
     pub(super) fn refresh_passes(&mut self, gpu: &Gpu) {
-        let ctx = build_ctx(gpu, &self.res, &self.set, self.wants);
+        let ctx = build_ctx(gpu, &self.res, &self.set, self.wanted);
         self.passes.refresh(&ctx);
         for pass in self.passes.each_mut().into_iter().flatten() {
             pass.resize(&gpu.device, &self.res);
@@ -369,7 +368,6 @@ impl Renderer {
         self.prepare_for(gpu, (model, roles), &subject);
         let bound = model_sphere(model).unwrap_or(CHARACTER.sphere_at(Vec3::ZERO));
         self.res.subjects.set_character(Subject::new(subject, bound));
-        self.res.casters.character = Some(CHARACTER);
         self.set_material(gpu, &roles.optics);
         self.refresh_passes(gpu);
     }
@@ -461,14 +459,13 @@ impl Renderer {
             kind,
             model,
         );
-        self.install_prop(kind, model, prop);
+        self.install_prop(kind, prop);
         self.refresh_passes(gpu);
     }
 
     /// Draws `prop`, uploaded from `model`, for `kind` (replacing any earlier one).
-    pub(super) fn install_prop(&mut self, kind: PropKind, model: &Model, prop: PropGpu) {
+    pub(super) fn install_prop(&mut self, kind: PropKind, prop: PropGpu) {
         self.res.props.retain(|p| p.kind != kind);
-        self.res.casters.set_prop(kind, model);
         self.res.props.push(prop);
     }
 
@@ -503,40 +500,27 @@ impl Renderer {
         self.res.light_maps.is_some()
     }
 
-    /// Builds the blob shadows if anything loaded casts one; returns whether they exist. The
-    /// frames' placements stage the props' blobs.
-    pub fn enable_blob_shadows(&mut self, gpu: &Gpu) -> bool {
-        self.wants.blobs = true;
+    /// Asks for the optional pass `id` (the blob shadows, the UI) and builds it where the
+    /// scene has what it draws for; returns whether it is built.
+    pub fn enable(&mut self, gpu: &Gpu, PassId(slot): PassId) -> bool {
+        self.wanted[slot] = true;
         self.refresh_passes(gpu);
-        self.passes.blobs.is_some()
+        self.passes_built()[slot]
     }
 
-    /// Switches built blob shadows on or off (the pass stays built).
-    pub fn set_blob_shadows(&mut self, on: bool) {
-        if let Some(b) = &mut self.passes.blobs {
-            b.enabled = on;
-        }
+    /// Switches pass `id` off or on (it stays built; off, it records nothing).
+    pub fn switch(&mut self, PassId(slot): PassId, on: bool) {
+        self.off[slot] = !on;
     }
 
-    /// Whether blob shadows are built and switched on.
-    pub fn blob_shadows(&self) -> bool {
-        self.passes.blobs.as_ref().is_some_and(|b| b.enabled)
-    }
-
-    /// Draws the UI handed over in the frames' packets, last in every frame (the game).
-    pub fn enable_ui(&mut self, gpu: &Gpu) {
-        self.wants.ui = true;
-        self.refresh_passes(gpu);
+    /// Whether pass `id` is built and switched on.
+    pub fn is_on(&self, PassId(slot): PassId) -> bool {
+        self.passes_built()[slot] && !self.off[slot]
     }
 
     /// Which passes are built ([`passes::NAMES`](super::passes::NAMES) order).
-    pub fn passes_built(&self) -> [bool; super::passes::PASS_COUNT] {
+    pub fn passes_built(&self) -> [bool; PASS_COUNT] {
         self.passes.each().map(|p| p.is_some())
-    }
-
-    /// Whether this renderer has the screen-space subsurface pass.
-    pub fn has_subsurface_pass(&self) -> bool {
-        self.passes.subsurface.is_some()
     }
 
     /// The output format.

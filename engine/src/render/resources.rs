@@ -1,20 +1,20 @@
 //! What the renderer owns and its passes read: the bind group layouts and samplers, the frame
 //! uniform and its bind group, the shading models' records, the scene as uploaded (subjects,
 //! props, what casts), and the textures passes share — the light's maps, written by the
-//! shadow and penumbra passes and read by the scene, and the subsurface targets, written by
-//! the scene and read by the subsurface pass. Passes hold only their own pipelines and bind
-//! groups; everything two of them touch lives here.
+//! shadow and penumbra passes and read by the scene, and the transient split targets, written
+//! by the scene and read by the pass that creates them. Passes hold only their own pipelines
+//! and bind groups; everything two of them touch lives here, in types of its own (no pass's).
 
 use glam::{Mat4, Vec3};
 
 use super::layouts::Layouts;
 use super::light_maps;
+use super::material_gpu::StandardKey;
 use super::model_gpu::ModelTable;
-use super::passes::blobs::Casters;
-use super::passes::subsurface::SplitTargets;
 use super::prepared::{per_frame, FRAMES_PREPARED};
 use super::prop_gpu::PropGpu;
 use super::skinned::SkinnedGpu;
+use super::targets::SplitTargets;
 use crate::scene::SubjectId;
 
 /// One subject's GPU side, its bounding sphere in its own space (centre, radius) and where
@@ -107,11 +107,9 @@ pub struct Resources {
     pub models: ModelTable,
     pub subjects: Subjects,
     /// The standard materials' pipelines the subjects loaded need.
-    pub standard: Vec<super::passes::character::StandardKey>,
+    pub standard: Vec<StandardKey>,
     /// The prop kinds uploaded, one record each.
     pub props: Vec<PropGpu>,
-    /// What casts a blob shadow (recorded at load).
-    pub casters: Casters,
     /// The shadow map and the penumbra grid, once something casts.
     pub light_maps: Option<light_maps::LightMaps>,
     /// A measurement scene's shadow-only occluder (world-space triangles).
@@ -120,8 +118,8 @@ pub struct Resources {
     pub shadow_fit: Option<(Vec3, f32)>,
     /// Whether the drawn subject casts into the shadow map (measurement media do not).
     pub subject_casts: bool,
-    /// The subsurface pass's targets at the frame's size, where the scene can reach a
-    /// screen-space model (made by `Renderer::resize`).
+    /// The split targets at the frame's size, where a built pass creates them (the frame
+    /// graph's transient `Target::Split`, made by `Renderer::resize`).
     pub split: Option<SplitTargets>,
     /// What group 0 binds where there are no light maps, and its comparison sampler.
     pub light_defaults: light_maps::Defaults,

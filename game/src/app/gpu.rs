@@ -6,6 +6,7 @@
 //! swaps what is drawn and creates nothing. It sees frame packets, never the session
 //! ([`GameFrame`](super::GameFrame) hands them over).
 
+use dermis_engine::render::passes::PassId;
 use std::sync::Arc;
 
 use dermis_engine::anim::Pose;
@@ -52,8 +53,8 @@ impl GameGpu {
             (&assets.character, &assets.roles, &assets.props),
         )?;
         // Contact shadows under the runner and the props, so nothing floats.
-        renderer.enable_blob_shadows(gpu);
-        renderer.enable_ui(gpu);
+        renderer.enable(gpu, PassId::blobs);
+        renderer.enable(gpu, PassId::ui);
         Ok(Self {
             renderer,
             head: None,

@@ -12,9 +12,9 @@
 //! [`REACH_MM`] are never read — over the grid: 128² for the game's 1024² map (4 jump
 //! passes), independent of the screen.
 
-use super::{BuildCtx, Pass, Stage};
+use super::{Access, BuildCtx, Declared, Pass, Target};
 use crate::render::layouts;
-use crate::render::light_maps::{LightMaps, PenumbraGrid};
+use crate::render::light_maps::{LightMaps, PenumbraGrid, PENUMBRA_FORMAT as FORMAT};
 use crate::render::pipelines::{pipeline_layout, wgsl_module};
 use crate::render::prepared::{per_frame, Drawn, PassFrame, PreparedFrame, FRAMES_PREPARED};
 use crate::render::resources::Resources;
@@ -25,8 +25,6 @@ use crate::shader::uniforms::PenumbraUniform;
 pub use crate::shader::uniforms::PENUMBRA_BLOCK as BLOCK;
 /// How far from an edge a distance is needed (mm): the edge-spread table's span.
 pub const REACH_MM: f32 = crate::shading::edge_spread::SPAN_MM as f32;
-/// The grid's texture format: seed uv, depth, valid.
-pub const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 /// The depth step that makes an edge, in metres along the light: at most 1 cm, and at most
 /// [`EDGE_GAP_TEXELS`] texel widths, so a caster a few millimetres above a finely mapped
 /// receiver (a blade over a measured medium, a finger over a palm) still has its edge. A step
@@ -215,6 +213,15 @@ impl PenumbraPass {
     }
 }
 
+/// The seed and jump passes read the shadow map and write the penumbra map's grid.
+impl Declared for PenumbraPass {
+    const ACCESS: Access = Access {
+        creates: &[],
+        reads: &[Target::ShadowMap],
+        writes: &[Target::PenumbraMap],
+    };
+}
+
 impl Pass for PenumbraPass {
     fn build(ctx: &BuildCtx) -> Option<Self> {
         let maps = ctx.light_maps?;
@@ -232,9 +239,6 @@ impl Pass for PenumbraPass {
         grid.map(|g| g.size) != Some(self.size)
     }
 
-    fn stage(&self) -> Stage {
-        Stage::Light
-    }
 
     /// Runs in frames with a shadow map that draw a model with the `penumbra` effect: as
     /// many jump passes as reach [`REACH_MM`] over the map's width this frame.

@@ -7,7 +7,7 @@
 //! variant for frames with the subsurface pass (two linear targets) only where the scene can
 //! reach a screen-space model.
 
-use super::{BuildCtx, Pass, Stage};
+use super::{Access, BuildCtx, Declared, Pass, Target};
 use crate::camera::Frustum;
 use crate::render::layouts::Layouts;
 use crate::render::mesh::{instance_layout, vertex_layout};
@@ -66,11 +66,18 @@ fn prop_pipeline(
     )
 }
 
+/// The props, lit and shadowed, into the scene.
+impl Declared for PropsPass {
+    const ACCESS: Access = Access {
+        creates: &[],
+        reads: &[Target::ShadowMap],
+        writes: &[Target::Scene],
+    };
+}
+
 impl Pass for PropsPass {
     fn build(ctx: &BuildCtx) -> Option<Self> {
-        if !ctx.props {
-            return None;
-        }
+        ctx.prop_kinds().next()?;
         let (device, layouts) = (ctx.device, ctx.layouts);
         let instances = per_frame(|_| {
             PropKind::ALL
@@ -89,17 +96,13 @@ impl Pass for PropsPass {
         Some(Self {
             pipeline: prop_pipeline(ctx.pipelines(), layouts, ctx.format, false),
             split: ctx
-                .set
-                .needs_subsurface_pass()
+                .split()
                 .then(|| prop_pipeline(ctx.pipelines(), layouts, ctx.format, true)),
             instances,
             scratch: Vec::with_capacity(MAX_INSTANCES as usize),
         })
     }
 
-    fn stage(&self) -> Stage {
-        Stage::Scene
-    }
 
     /// Uploads each kind's placements inside the view into the frame's copy; runs when the
     /// frame draws props and one is visible.

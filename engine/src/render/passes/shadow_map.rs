@@ -4,7 +4,7 @@
 //! light's frustum is the frame's [`ShadowView`](crate::render::ShadowView); the map itself is
 //! one of the renderer's light maps (`light_maps.rs`). Built once something casts.
 
-use super::{BuildCtx, Pass, Stage};
+use super::{Access, BuildCtx, Declared, Pass, Target};
 use crate::render::layouts;
 use crate::render::light_maps::{depth_pass, SHADOW_FORMAT};
 use crate::render::mesh::vertex_layout;
@@ -70,6 +70,15 @@ fn depth_only(
             multiview_mask: None,
             cache: dev.cache,
         })
+}
+
+/// The subject and the occluder drawn depth-only into the light's depth map.
+impl Declared for ShadowMapPass {
+    const ACCESS: Access = Access {
+        creates: &[],
+        reads: &[],
+        writes: &[Target::ShadowMap],
+    };
 }
 
 impl Pass for ShadowMapPass {
@@ -145,9 +154,6 @@ impl Pass for ShadowMapPass {
         ctx.occluder && self.occluder.is_none()
     }
 
-    fn stage(&self) -> Stage {
-        Stage::Light
-    }
 
     /// Runs when the frame's shadow view says a map is drawn; writes the light's matrix.
     fn prepare(

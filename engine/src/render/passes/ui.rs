@@ -5,7 +5,7 @@
 //! is written only when it holds another version; the screen size comes from the frame.
 //! Built where the renderer draws a UI (the game).
 
-use super::{BuildCtx, Pass, Stage};
+use super::{Access, BuildCtx, Declared, Pass, Target};
 use crate::render::pipelines::PipelineDevice;
 use crate::render::pipelines::{pipeline_layout, wgsl_module};
 use crate::render::prepared::{per_frame, Drawn, PassFrame, PreparedFrame, FRAMES_PREPARED};
@@ -224,15 +224,21 @@ impl UiPass {
     }
 }
 
+/// The UI, over everything, into the output.
+impl Declared for UiPass {
+    const ACCESS: Access = Access {
+        creates: &[],
+        reads: &[],
+        writes: &[Target::Output],
+    };
+}
+
 impl Pass for UiPass {
     fn build(ctx: &BuildCtx) -> Option<Self> {
         ctx.ui
             .then(|| Self::new(ctx.pipelines(), ctx.queue, ctx.format))
     }
 
-    fn stage(&self) -> Stage {
-        Stage::Last
-    }
 
     /// Writes the frame's size and the UI's vertices into the frame's copy where it holds
     /// others; runs when there is anything to draw (`steps`: the vertices drawn).
