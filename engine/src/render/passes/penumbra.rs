@@ -260,8 +260,11 @@ impl Pass for PenumbraPass {
         let jumps = jump_steps(self.size, shadow.width_m()).count() as u32;
         let copy = frame.copy;
         if self.written[copy] != Some((jumps, gap)) {
+            // Every pass's constants in one write (each write stages a buffer of its own).
+            let mut slots = [0u8; SLOT as usize * MAX_PASSES];
             let first = std::iter::once(0);
             let all = first.chain(jump_steps(self.size, shadow.width_m()));
+            let mut passes = 0;
             for (k, step) in all.enumerate().take(MAX_PASSES) {
                 let jump = PenumbraUniform {
                     step: step as f32,
@@ -269,10 +272,14 @@ impl Pass for PenumbraPass {
                     edge_gap: gap,
                     _pad0: 0.0,
                 };
-                let at = (copy as u64 * self.passes + k as u64) * SLOT;
-                queue.write_buffer(&self.uniforms, at, bytemuck::bytes_of(&jump));
-                frame.uploads += 1;
+                let at = k * SLOT as usize;
+                let bytes = bytemuck::bytes_of(&jump);
+                slots[at..at + bytes.len()].copy_from_slice(bytes);
+                passes = k + 1;
             }
+            let at = copy as u64 * self.passes * SLOT;
+            queue.write_buffer(&self.uniforms, at, &slots[..passes * SLOT as usize]);
+            frame.uploads += 1;
             self.written[copy] = Some((jumps, gap));
         }
         let u = &mut frame.uniform;
