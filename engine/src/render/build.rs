@@ -172,8 +172,8 @@ impl Renderer {
         let models = ModelTable::new(device, queue, &layouts, &set.models);
         let res = resources(gpu, format, (layouts, sampler), models, Some(light_maps));
         let mut renderer = Self::assemble(res, pipelines, passes, set);
-        for ((kind, model), prop) in props.iter().zip(prop_gpus) {
-            renderer.install_prop(*kind, model, prop);
+        for ((kind, _), prop) in props.iter().zip(prop_gpus) {
+            renderer.install_prop(*kind, prop);
         }
         renderer.install_character(gpu, (character, roles), subject?);
         Ok(renderer)
@@ -193,6 +193,7 @@ impl Renderer {
             pipelines,
             set: set.clone(),
             wanted: [false; PASS_COUNT],
+            off: [false; PASS_COUNT],
             warned_size: false,
             prepared: 0,
         };

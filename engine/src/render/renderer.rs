@@ -228,7 +228,8 @@ impl Renderer {
     /// `frame`, what was loaded and `frame`'s copy of the per-frame buffers; refuses (one
     /// line) a frame whose copy a later frame has been prepared into.
     pub fn encode(&self, frame: &PreparedFrame, ctx: &mut PassCtx) -> Result<RenderStats, String> {
-        if frame.seq + FRAMES_PREPARED as u64 < self.prepared || frame.seq >= self.prepared {
+        let copies = FRAMES_PREPARED as u64;
+        if frame.seq + copies < self.prepared || frame.seq >= self.prepared {
             return Err(format!(
                 "frame {} is stale: {} frames were prepared after it and its buffers hold a later one's (at most {} may wait to be encoded)",
                 frame.seq,

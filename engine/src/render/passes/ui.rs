@@ -235,7 +235,7 @@ impl Declared for UiPass {
 
 impl Pass for UiPass {
     fn build(ctx: &BuildCtx) -> Option<Self> {
-        ctx.ui
+        ctx.wanted::<Self>()
             .then(|| Self::new(ctx.pipelines(), ctx.queue, ctx.format))
     }
 
