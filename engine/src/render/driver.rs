@@ -102,8 +102,8 @@ impl Clock {
     };
 }
 
-/// Heap allocation counts (from the driver's counter) when each step ended; all zero
-/// without a counter.
+/// Heap allocation counts (from the driver's counter) when each step ended (`start`: once
+/// the frame's encoder was opened); all zero without a counter.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Allocs {
     pub start: u64,
@@ -282,10 +282,6 @@ impl FrameDriver {
         let size = (targets.width, targets.height);
         let start = Instant::now();
         let dt = self.dt(start);
-        let allocs = Allocs {
-            start: self.count(),
-            ..Allocs::default()
-        };
         let mut encoder = gpu
             .device
             .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
@@ -294,6 +290,11 @@ impl FrameDriver {
         if let (Some(r), Some(s)) = (&self.timer, timer_slot) {
             r.start(&mut encoder, s);
         }
+        // Counted from here: the app's update is measured alone.
+        let allocs = Allocs {
+            start: self.count(),
+            ..Allocs::default()
+        };
         Ok(Frame {
             index: self.frames,
             dt,
