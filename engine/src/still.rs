@@ -43,6 +43,15 @@ impl Shot {
     }
 }
 
+/// Where a still places its character and camera ([`StillRenderer::framing`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Framing {
+    /// The character's placement in the world.
+    pub world: Mat4,
+    /// The camera and the light.
+    pub view: FrameView,
+}
+
 /// A renderer with the scene uploaded and an offscreen target, reused across shots.
 pub struct StillRenderer {
     pub renderer: Renderer,
@@ -87,32 +96,24 @@ impl StillRenderer {
         self.renderer.enable(gpu, PassId::blobs)
     }
 
-    /// Poses the character, places camera and light and prepares the frame of `shot`.
+    /// Poses the character, places camera and light and prepares the frame of `shot`: the
+    /// camera framed on this pose ([`Self::framing`]), then [`Self::frame_in`].
     pub fn frame(
         &mut self,
         gpu: &Gpu,
         assets: &SceneAssets,
         shot: &Shot,
     ) -> Result<PreparedFrame, String> {
+        let framing = self.framing(assets, shot)?;
+        self.frame_in(gpu, assets, shot, &framing)
+    }
+
+    /// Where `shot` places the character and the camera: posed at the shot's moment, scaled
+    /// to the one character height, standing at the origin, its posed bounds (every vertex
+    /// skinned on the CPU) framed to fill `shot.fill` of the view; the light as the shot says.
+    pub fn framing(&mut self, assets: &SceneAssets, shot: &Shot) -> Result<Framing, String> {
         let model = &assets.character;
-        if self.material.as_ref() != Some(&shot.material) {
-            self.renderer.set_material(gpu, &shot.material);
-            self.material = Some(shot.material.clone());
-        }
-        self.pose.reset(model);
-        if !model.animations.is_empty() {
-            let clip = model.animations.get(shot.clip).ok_or_else(|| {
-                format!(
-                    "{}: clip {} out of range (the model has {})",
-                    model.source,
-                    shot.clip,
-                    model.animations.len()
-                )
-            })?;
-            self.pose
-                .apply_clip(clip, shot.time.clamp(0.0, clip.duration));
-        }
-        self.pose.update_world(model);
+        self.pose_at(assets, shot)?;
         let (lo, hi) = posed_bounds(model, &self.pose)
             .ok_or_else(|| format!("{}: no skinned mesh", model.source))?;
         // Normalise any character to the one character height, standing on the floor at the
@@ -140,6 +141,46 @@ impl StillRenderer {
             light,
             exposure: EXPOSURE,
         };
+        Ok(Framing { world, view })
+    }
+
+    /// Poses the character at `shot`'s moment.
+    fn pose_at(&mut self, assets: &SceneAssets, shot: &Shot) -> Result<(), String> {
+        let model = &assets.character;
+        self.pose.reset(model);
+        if !model.animations.is_empty() {
+            let clip = model.animations.get(shot.clip).ok_or_else(|| {
+                format!(
+                    "{}: clip {} out of range (the model has {})",
+                    model.source,
+                    shot.clip,
+                    model.animations.len()
+                )
+            })?;
+            self.pose
+                .apply_clip(clip, shot.time.clamp(0.0, clip.duration));
+        }
+        self.pose.update_world(model);
+        Ok(())
+    }
+
+    /// Poses the character at `shot`'s moment and prepares its frame placed and seen as
+    /// `framing` says (a camera that stays put while the character moves: what a game's
+    /// frame does).
+    pub fn frame_in(
+        &mut self,
+        gpu: &Gpu,
+        assets: &SceneAssets,
+        shot: &Shot,
+        framing: &Framing,
+    ) -> Result<PreparedFrame, String> {
+        let model = &assets.character;
+        if self.material.as_ref() != Some(&shot.material) {
+            self.renderer.set_material(gpu, &shot.material);
+            self.material = Some(shot.material.clone());
+        }
+        self.pose_at(assets, shot)?;
+        let (w, h) = (self.offscreen.targets.width, self.offscreen.targets.height);
         let draw = DrawSet {
             shading: shot.shading,
             character: true,
@@ -150,10 +191,10 @@ impl StillRenderer {
             subject: Some(SubjectPose {
                 model,
                 pose: &self.pose,
-                world,
+                world: framing.world,
             }),
             props: &self.props,
-            ..FramePacket::new((w, h), view, draw)
+            ..FramePacket::new((w, h), framing.view, draw)
         };
         Ok(self.renderer.prepare(gpu, &packet))
     }
@@ -206,16 +247,17 @@ impl StillRenderer {
         let frame = self.frame(gpu, assets, shot).ok()?;
         let timer = self.timer.as_ref()?;
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
-        self.renderer.encode(
-            &frame,
-            &mut PassCtx {
-                encoder: &mut encoder,
-                targets: &self.offscreen.targets,
-                output: &self.offscreen.view,
-                timer: Some(timer),
-            },
-        )
-        .ok()?;
+        self.renderer
+            .encode(
+                &frame,
+                &mut PassCtx {
+                    encoder: &mut encoder,
+                    targets: &self.offscreen.targets,
+                    output: &self.offscreen.view,
+                    timer: Some(timer),
+                },
+            )
+            .ok()?;
         timer.resolve(&mut encoder);
         gpu.queue.submit([encoder.finish()]);
         timer.read_ms(&gpu.device)

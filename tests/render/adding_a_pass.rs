@@ -130,7 +130,10 @@ fn the_table_alone_lists_the_passes_and_their_declarations_order_the_frame() {
         let slot = NAMES.iter().position(|n| *n == name).unwrap();
         order.iter().position(|&s| s == slot).unwrap()
     };
-    for (name, target) in [("shadow_map", Target::ShadowMap), ("penumbra", Target::PenumbraMap)] {
+    for (name, target) in [
+        ("shadow_map", Target::ShadowMap),
+        ("penumbra", Target::PenumbraMap),
+    ] {
         for (reader, access) in NAMES.iter().zip(ACCESS) {
             if access.reads.contains(&target) && *reader != name {
                 assert!(at(name) < at(reader), "{name} before {reader}");
@@ -142,7 +145,11 @@ fn the_table_alone_lists_the_passes_and_their_declarations_order_the_frame() {
         assert!(!access.writes.is_empty(), "{name} writes nothing");
     }
     let creates_split = ACCESS.iter().filter(|a| a.creates.contains(&Target::Split));
-    assert_eq!(creates_split.count(), 1, "one pass creates the split targets");
+    assert_eq!(
+        creates_split.count(),
+        1,
+        "one pass creates the split targets"
+    );
 }
 
 /// A renderer with the whole scene (the character, the props, blob shadows, the UI) for

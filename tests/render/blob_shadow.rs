@@ -4,8 +4,8 @@
 //! is lighter than a standing one's. Each comparison renders the same uploaded frame twice,
 //! shadows off and on.
 
-use dermis_engine::render::passes::PassId;
 use crate::common;
+use dermis_engine::render::passes::PassId;
 
 use std::path::Path;
 

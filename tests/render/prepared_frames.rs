@@ -27,9 +27,8 @@ fn differing(a: &RgbaImage, b: &RgbaImage, by: u8) -> usize {
 /// Frame B: the runner a metre to the side and turned, seen from elsewhere, no props, no UI.
 fn other(p: &mut FramePacket) {
     if let Some(s) = &mut p.subject {
-        s.world = Mat4::from_translation(Vec3::new(0.8, 0.0, 0.3))
-            * Mat4::from_rotation_y(1.2)
-            * s.world;
+        s.world =
+            Mat4::from_translation(Vec3::new(0.8, 0.0, 0.3)) * Mat4::from_rotation_y(1.2) * s.world;
     }
     p.view.view_proj *= Mat4::from_rotation_y(0.25);
     p.props = &[];

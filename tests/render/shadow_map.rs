@@ -376,7 +376,11 @@ fn the_showroom_close_up_crops_the_shadow_map_to_what_it_sees() {
         texels.push((fit.texel_m * 1e3, crop.texel_m * 1e3));
         // Points on a grid of the sphere and of the floor around it, those the camera sees
         // whose segment to the light crosses the runner's box: inside the map.
-        let (lo, hi) = rig.gg.renderer.subject_box(SubjectId::CHARACTER).expect("the runner was posed");
+        let (lo, hi) = rig
+            .gg
+            .renderer
+            .subject_box(SubjectId::CHARACTER)
+            .expect("the runner was posed");
         let n = 14;
         let f = |a: usize| (a as f32 + 0.5) / n as f32 * 2.0 - 1.0;
         let body =

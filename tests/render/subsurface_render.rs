@@ -185,7 +185,11 @@ fn the_screen_space_pass_exists_only_where_a_model_calls_for_it() {
         let built = pipelines() - before;
         let (kind, model) = &assets.props[0];
         r.load_prop(&gpu, *kind, model);
-        (built, r.is_on(PassId::subsurface), pipelines() - before - built)
+        (
+            built,
+            r.is_on(PassId::subsurface),
+            pipelines() - before - built,
+        )
     };
     let local = PipelineSet {
         models: vec![ShadingModel::Ward, ShadingModel::Preintegrated],

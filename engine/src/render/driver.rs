@@ -267,7 +267,12 @@ impl FrameDriver {
     pub fn begin(&mut self, gpu: &Gpu, output: &mut Output<'_>) -> Result<Frame, FrameStatus> {
         self.harvested.clear();
         let (image, status, view, texture) = match output {
-            Output::Offscreen(o) => (None, FrameStatus::Presented, o.view.clone(), o.texture.clone()),
+            Output::Offscreen(o) => (
+                None,
+                FrameStatus::Presented,
+                o.view.clone(),
+                o.texture.clone(),
+            ),
             Output::Surface(s) => {
                 let (image, status) = s.acquire(gpu)?;
                 let view = image

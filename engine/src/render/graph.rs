@@ -132,13 +132,19 @@ pub fn check<const N: usize>(passes: &[Access; N], order: &[usize; N]) -> Result
         }
         for &j in &order[k + 1..] {
             if a.after(&passes[j]) {
-                return Err(format!("pass {i} records before pass {j}, which it must follow"));
+                return Err(format!(
+                    "pass {i} records before pass {j}, which it must follow"
+                ));
             }
         }
         for t in a.reads {
-            let written = passes.iter().any(|p| has(p.writes, *t) || has(p.creates, *t));
+            let written = passes
+                .iter()
+                .any(|p| has(p.writes, *t) || has(p.creates, *t));
             if !written {
-                return Err(format!("pass {i} reads {t:?}, which no pass writes or creates"));
+                return Err(format!(
+                    "pass {i} reads {t:?}, which no pass writes or creates"
+                ));
             }
         }
     }

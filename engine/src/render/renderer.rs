@@ -10,9 +10,9 @@
 use glam::Vec3;
 
 use super::light_maps::{LightMaps, Occluder, SHADOW_MAP_SIZE};
+use super::material_gpu::standard_keys;
 use super::model_gpu::PipelineKey;
 use super::offscreen::Offscreen;
-use super::material_gpu::standard_keys;
 use super::passes::resolve::{self, Timed};
 use super::passes::{BuildCtx, PassId, Passes, Stage, Target, PASS_COUNT};
 use super::pipelines::{CharacterPipelines, PipelineSet};
@@ -368,7 +368,9 @@ impl Renderer {
     ) {
         self.prepare_for(gpu, (model, roles), &subject);
         let bound = model_sphere(model).unwrap_or(CHARACTER.sphere_at(Vec3::ZERO));
-        self.res.subjects.set_character(Subject::new(subject, bound));
+        self.res
+            .subjects
+            .set_character(Subject::new(subject, bound));
         self.set_material(gpu, &roles.optics);
         self.refresh_passes(gpu);
     }

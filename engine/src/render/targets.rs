@@ -200,7 +200,6 @@ impl SplitTargets {
     }
 }
 
-
 /// The frame's depth target: cleared, never stored.
 pub fn depth_attachment(targets: &Targets) -> wgpu::RenderPassDepthStencilAttachment<'_> {
     wgpu::RenderPassDepthStencilAttachment {

@@ -9,8 +9,8 @@ use std::path::PathBuf;
 
 use glam::{Mat4, Vec3};
 
-use super::showroom::{head_matrix, is_showroom, Subject};
 use super::gpu::HEAD;
+use super::showroom::{head_matrix, is_showroom, Subject};
 use super::{GameUi, Settings, Showroom, ShowroomHead};
 use crate::governor::{Change, Governor, GovernorConfig, Needs, Tiers};
 use crate::rules::{Bot, Clip, Game, Input, Screen, Swipe};

@@ -16,8 +16,8 @@ use glam::{Mat4, Vec3};
 
 use super::{Access, BuildCtx, Declared, Pass, Target};
 use crate::render::pipelines::PipelineDevice;
-use crate::render::prop_gpu::{Footprint, PropGpu};
 use crate::render::prepared::{per_frame, Drawn, PassFrame, PreparedFrame, FRAMES_PREPARED};
+use crate::render::prop_gpu::{Footprint, PropGpu};
 use crate::render::resources::Resources;
 use crate::render::targets::{depth_state, multisample, scene_targets, MSAA_SAMPLES};
 use crate::scene::{CharacterBound, FramePacket, PropInstance, PropKind, CHARACTER};
@@ -225,7 +225,6 @@ impl Pass for BlobsPass {
         let something_casts = ctx.character || ctx.prop_kinds().any(casts);
         (ctx.wanted::<Self>() && something_casts).then(|| Self::new(ctx))
     }
-
 
     /// Stages the subject's blob where it is placed and the props' where the frame placed
     /// them; runs when switched on in a frame with props (the blobs lie on the floor);

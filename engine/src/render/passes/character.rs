@@ -54,7 +54,10 @@ fn standard_targets(
     let all = wgpu::ColorWrites::ALL;
     let (first, rest) = match (blend, split) {
         (false, _) => (state(None, all), state(None, all)),
-        (true, false) => (state(Some(wgpu::BlendState::ALPHA_BLENDING), all), state(None, all)),
+        (true, false) => (
+            state(Some(wgpu::BlendState::ALPHA_BLENDING), all),
+            state(None, all),
+        ),
         (true, true) => (
             state(
                 Some(wgpu::BlendState::PREMULTIPLIED_ALPHA_BLENDING),
@@ -128,7 +131,6 @@ impl Pass for CharacterPass {
             .iter()
             .any(|k| !self.standard.iter().any(|s| s.key == *k))
     }
-
 
     /// Runs when the frame draws a subject.
     fn prepare(

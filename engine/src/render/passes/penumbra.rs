@@ -239,7 +239,6 @@ impl Pass for PenumbraPass {
         grid.map(|g| g.size) != Some(self.size)
     }
 
-
     /// Runs in frames with a shadow map that draw a model with the `penumbra` effect: as
     /// many jump passes as reach [`REACH_MM`] over the map's width this frame.
     fn prepare(

@@ -103,7 +103,6 @@ impl Pass for PropsPass {
         })
     }
 
-
     /// Uploads each kind's placements inside the view into the frame's copy; runs when the
     /// frame draws props and one is visible.
     fn prepare(

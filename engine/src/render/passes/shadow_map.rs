@@ -154,7 +154,6 @@ impl Pass for ShadowMapPass {
         ctx.occluder && self.occluder.is_none()
     }
 
-
     /// Runs when the frame's shadow view says a map is drawn; writes the light's matrix.
     fn prepare(
         &mut self,

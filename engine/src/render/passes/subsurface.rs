@@ -140,7 +140,6 @@ impl Pass for SubsurfacePass {
             .then(|| Self::new(ctx.pipelines(), ctx.layouts, ctx.format))
     }
 
-
     /// Runs in frames that end with it (the renderer decided: a screen-space model drawn).
     fn prepare(
         &mut self,

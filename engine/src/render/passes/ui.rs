@@ -183,7 +183,12 @@ impl UiPass {
 
     /// Writes the surface size (pixels) the vertices are in into `copy`, unless it holds it
     /// (returns whether it wrote).
-    fn set_screen(&mut self, queue: &wgpu::Queue, copy: usize, (width, height): (u32, u32)) -> bool {
+    fn set_screen(
+        &mut self,
+        queue: &wgpu::Queue,
+        copy: usize,
+        (width, height): (u32, u32),
+    ) -> bool {
         let size = [width.max(1), height.max(1)];
         let c = &mut self.copies[copy];
         if size == c.screen {
@@ -210,7 +215,13 @@ impl UiPass {
 
     /// Writes `vertices` (of `version`) into `copy`, unless it holds them (returns whether
     /// it wrote).
-    fn upload(&mut self, queue: &wgpu::Queue, copy: usize, vertices: &[UiVertex], version: u64) -> bool {
+    fn upload(
+        &mut self,
+        queue: &wgpu::Queue,
+        copy: usize,
+        vertices: &[UiVertex],
+        version: u64,
+    ) -> bool {
         let c = &mut self.copies[copy];
         if c.version == Some(version) {
             return false;
@@ -238,7 +249,6 @@ impl Pass for UiPass {
         ctx.wanted::<Self>()
             .then(|| Self::new(ctx.pipelines(), ctx.queue, ctx.format))
     }
-
 
     /// Writes the frame's size and the UI's vertices into the frame's copy where it holds
     /// others; runs when there is anything to draw (`steps`: the vertices drawn).
