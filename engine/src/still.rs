@@ -109,7 +109,7 @@ impl StillRenderer {
 
     /// Builds and switches on the renderer's blob shadows under the character and the
     /// showroom props (drawn only in shots with props); returns whether they exist. Stills
-    /// have none unless this is called; `renderer.set_blob_shadows` switches them.
+    /// have none unless this is called; `renderer.switch(PassId::blobs, on)` switches them.
     pub fn enable_blob_shadows(&mut self, gpu: &Gpu) -> bool {
         self.renderer.enable(gpu, PassId::blobs)
     }
