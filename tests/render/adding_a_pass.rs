@@ -210,7 +210,6 @@ impl Scene {
             }),
             props: &props,
             ui: ui.vertices(),
-            ui_version: ui.version(),
             ..FramePacket::new((160, 120), view, draw)
         };
         let frame = r.prepare(&self.gpu, &packet);

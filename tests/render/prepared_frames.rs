@@ -33,7 +33,6 @@ fn other(p: &mut FramePacket) {
     p.view.view_proj *= Mat4::from_rotation_y(0.25);
     p.props = &[];
     p.ui = &[];
-    p.ui_version = u64::MAX;
 }
 
 #[test]

@@ -44,9 +44,8 @@ impl UiRig {
         }
     }
 
-    /// A frame of the UI alone, handing over `vertices` of `version` (uploaded when the
-    /// version is new).
-    fn draw(&mut self, vertices: &[UiVertex], version: u64) -> (RenderStats, Vec<u8>) {
+    /// A frame of the UI alone, drawing `vertices`.
+    fn draw(&mut self, vertices: &[UiVertex]) -> (RenderStats, Vec<u8>) {
         let size = (self.target.targets.width, self.target.targets.height);
         let view = FrameView {
             view_proj: Mat4::IDENTITY,
@@ -62,7 +61,6 @@ impl UiRig {
         };
         let packet = FramePacket {
             ui: vertices,
-            ui_version: version,
             ..FramePacket::new(size, view, draw)
         };
         let frame = self.renderer.prepare(&self.gpu, &packet);
@@ -112,7 +110,7 @@ fn ui_renders_with_one_draw_call() {
     ui.label([10.0, 60.0], "I", 48.0);
     ui.end();
     assert!(ui.needs_upload());
-    let (stats, px) = rig.draw(ui.vertices(), ui.version());
+    let (stats, px) = rig.draw(ui.vertices());
     if let Ok(path) = std::env::var("DERMIS_UI_GPU_PNG") {
         image::save_buffer(path, &px, W, H, image::ExtendedColorType::Rgba8).unwrap();
     }
@@ -143,7 +141,7 @@ fn ui_renders_with_one_draw_call() {
         .count();
     assert!(stem > 10, "glyph stem pixels: {stem}");
     // An empty UI draws nothing.
-    let (stats, px) = rig.draw(&[], u64::MAX);
+    let (stats, px) = rig.draw(&[]);
     assert_eq!(stats.draw_calls, 0, "{stats:?}");
     assert!(px.chunks_exact(4).all(|p| p[..3] == [0, 0, 0]));
 }
@@ -174,7 +172,7 @@ fn each_game_screen_shows_what_it_says() {
         ui.begin(SW as f32, SH as f32, 1.0, insets);
         gui.draw(ui, game, &mut settings);
         ui.end();
-        let (stats, px) = rig.draw(ui.vertices(), ui.version());
+        let (stats, px) = rig.draw(ui.vertices());
         assert_eq!(stats.draw_calls, 1, "{name}: {stats:?}");
         if let Ok(dir) = std::env::var("DERMIS_UI_SCREENS") {
             let path = std::path::Path::new(&dir).join(format!("{name}.png"));

@@ -67,9 +67,6 @@ pub struct FramePacket<'a> {
     pub props: &'a [PropInstance],
     /// The UI's vertices (drawn when `draw.ui`).
     pub ui: &'a [UiVertex],
-    /// Changes whenever `ui` does (`crate::ui::Ui::version`): the renderer uploads the
-    /// vertices only then.
-    pub ui_version: u64,
     /// Whether every pipeline the scene can reach must be ready before this frame (play:
     /// nothing is created from its first frame on); otherwise only the one drawn.
     pub settled: bool,
@@ -87,7 +84,6 @@ impl<'a> FramePacket<'a> {
             subject: None,
             props: &[],
             ui: &[],
-            ui_version: 0,
             settled: false,
         }
     }

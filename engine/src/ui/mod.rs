@@ -492,12 +492,6 @@ impl Ui {
         self.rebuilt_this_frame
     }
 
-    /// Changes whenever the vertices do (the rebuilds so far): what a frame packet hands
-    /// over with them, so the renderer uploads them only when they changed.
-    pub fn version(&self) -> u64 {
-        self.rebuilds
-    }
-
     /// Whether the vertices changed since the last [`Ui::mark_uploaded`].
     pub fn needs_upload(&self) -> bool {
         self.needs_upload

@@ -469,7 +469,6 @@ impl Session {
             subject,
             props: &self.props,
             ui: self.ui.vertices(),
-            ui_version: self.ui.version(),
             settled,
         }
     }

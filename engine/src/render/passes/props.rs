@@ -127,12 +127,12 @@ impl Pass for PropsPass {
             }
             frame.visible_props[k] = self.scratch.len() as u32;
             let slot = &mut self.instances[frame.copy][k];
-            if slot.uploaded != self.scratch {
-                slot.uploaded.clear();
-                slot.uploaded.extend_from_slice(&self.scratch);
-                if !self.scratch.is_empty() {
-                    queue.write_buffer(&slot.buffer, 0, bytemuck::cast_slice(&self.scratch));
-                }
+            // Written every frame it draws (a check against the copy, two frames old, would
+            // make the writes per frame follow how often the view's props change).
+            slot.uploaded.clear();
+            slot.uploaded.extend_from_slice(&self.scratch);
+            if !self.scratch.is_empty() {
+                queue.write_buffer(&slot.buffer, 0, bytemuck::cast_slice(&self.scratch));
                 frame.uploads += 1;
             }
         }

@@ -1,8 +1,8 @@
 //! The UI's GPU side: one pipeline (premultiplied alpha blending, no depth write, depth test
 //! Always), the skin atlas texture, fixed-capacity vertex buffers created once (one per
 //! prepared frame's copy) and one draw call, last in the frame's last pass. The frame's
-//! packet hands over the UI's vertices with their version (`crate::ui::Ui::version`): a copy
-//! is written only when it holds another version; the screen size comes from the frame.
+//! packet hands over the UI's vertices, written into the frame's copy; the screen size comes
+//! from the frame.
 //! Built where the renderer draws a UI (the game).
 
 use super::{Access, BuildCtx, Declared, Pass, Target};
@@ -37,9 +37,8 @@ struct UiCopy {
     bind_group: wgpu::BindGroup,
     params: wgpu::Buffer,
     vertices: wgpu::Buffer,
-    /// What it holds: the screen size and the vertices' version.
+    /// The screen size it holds.
     screen: [u32; 2],
-    version: Option<u64>,
 }
 
 pub struct UiPass {
@@ -140,7 +139,6 @@ impl UiPass {
                 params,
                 vertices,
                 screen: [0, 0],
-                version: None,
             }
         });
         let pipeline_layout = pipeline_layout(device, "ui", &[Some(&layout)]);
@@ -213,25 +211,16 @@ impl UiPass {
         n - n % 3
     }
 
-    /// Writes `vertices` (of `version`) into `copy`, unless it holds them (returns whether
-    /// it wrote).
-    fn upload(
-        &mut self,
-        queue: &wgpu::Queue,
-        copy: usize,
-        vertices: &[UiVertex],
-        version: u64,
-    ) -> bool {
-        let c = &mut self.copies[copy];
-        if c.version == Some(version) {
-            return false;
-        }
-        c.version = Some(version);
+    /// Writes `vertices` into `copy`. Every frame that draws the UI writes its copy: a
+    /// version check would write each change twice (once per copy) and make the writes per
+    /// frame follow how often the UI changes.
+    fn upload(&self, queue: &wgpu::Queue, copy: usize, vertices: &[UiVertex]) -> bool {
         let n = Self::count(vertices);
         if n > 0 {
+            let c = &self.copies[copy];
             queue.write_buffer(&c.vertices, 0, bytemuck::cast_slice(&vertices[..n]));
         }
-        true
+        n > 0
     }
 }
 
@@ -264,7 +253,7 @@ impl Pass for UiPass {
         }
         let copy = frame.copy;
         frame.uploads += u32::from(self.set_screen(queue, copy, frame.size));
-        frame.uploads += u32::from(self.upload(queue, copy, packet.ui, packet.ui_version));
+        frame.uploads += u32::from(self.upload(queue, copy, packet.ui));
         let count = Self::count(packet.ui) as u32;
         PassFrame {
             runs: count > 0,
