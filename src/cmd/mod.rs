@@ -1,6 +1,7 @@
 pub mod albedo;
 pub mod args;
 pub mod bench;
+pub mod bench_distance;
 pub mod bench_effects;
 pub mod bench_face;
 pub mod bench_face_sweep;

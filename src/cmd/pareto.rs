@@ -576,7 +576,10 @@ mod tests {
         let better = json!({"models": [
             row("ward", 4.7, 2.9, Some(0.53)), row("oss-stable", 2.8, 4.5, Some(0.4)),
             row("preintegrated", 0.07, 5.0, Some(0.05))]});
-        assert_eq!(front_models(&better), ["preintegrated", "oss-stable", "ward"]);
+        assert_eq!(
+            front_models(&better),
+            ["preintegrated", "oss-stable", "ward"]
+        );
         let none = json!({"models": [
             row("ward", 4.7, 2.9, None), row("oss-stable", 2.8, 4.5, None),
             row("preintegrated", 0.07, 5.0, None)]});

@@ -21,8 +21,8 @@ use crate::render::pipelines::{pipeline_layout, wgsl_module};
 use crate::render::prepared::{Drawn, PassFrame, PreparedFrame};
 use crate::render::resources::Resources;
 use crate::scene::{FramePacket, SubjectPose};
-use glam::{Mat4, Vec2, Vec3};
 use crate::shader::uniforms::PenumbraUniform;
+use glam::{Mat4, Vec2, Vec3};
 
 /// Shadow-map texels per grid texel (per side), shared with the seed shader through `consts`.
 pub use crate::shader::uniforms::PENUMBRA_BLOCK as BLOCK;
@@ -69,7 +69,7 @@ pub fn jump_steps(size: u32, map_width_m: f32, reach_mm: f32) -> impl Iterator<I
     let texel_mm = map_width_m * 1000.0 / size.max(1) as f32;
     let reach_mm = reach_mm.clamp(0.0, REACH_MM);
     let reach = (reach_mm / texel_mm.max(1e-6)).ceil().clamp(1.0, 1e6) as u32;
-    let first = reach.div_ceil(2).next_power_of_two();
+    let first = (reach + 1).div_ceil(2).next_power_of_two();
     steps(size).filter(move |&s| s <= first)
 }
 
@@ -84,7 +84,10 @@ pub fn reach_for(diffusion_mm: f32) -> f32 {
 pub fn pixel_mm(view_proj: Mat4, eye: Vec3, viewport: (u32, u32), at: Vec3) -> f32 {
     let ray = at - eye;
     let d = ray.length();
-    let across = ray.cross(Vec3::Y).try_normalize().or(ray.cross(Vec3::X).try_normalize());
+    let across = ray
+        .cross(Vec3::Y)
+        .try_normalize()
+        .or(ray.cross(Vec3::X).try_normalize());
     let Some(across) = across.filter(|_| d > 1e-6) else {
         return 0.0;
     };
@@ -123,7 +126,11 @@ fn subject_centre(subject: &SubjectPose) -> Vec3 {
         lo = lo.min(p.bounds.min);
         hi = hi.max(p.bounds.max);
     }
-    let centre = if lo.x <= hi.x { 0.5 * (lo + hi) } else { Vec3::ZERO };
+    let centre = if lo.x <= hi.x {
+        0.5 * (lo + hi)
+    } else {
+        Vec3::ZERO
+    };
     subject.world.transform_point3(centre)
 }
 
@@ -308,7 +315,10 @@ impl Pass for PenumbraPass {
         let shows = packet.subject.as_ref().is_none_or(|s| {
             let view = &packet.view;
             let at = subject_centre(s);
-            resolvable(diffusion, pixel_mm(view.view_proj, view.camera_pos, packet.viewport, at))
+            resolvable(
+                diffusion,
+                pixel_mm(view.view_proj, view.camera_pos, packet.viewport, at),
+            )
         });
         if !(frame.shadow.drawn && reads && shows) {
             return PassFrame::default();
@@ -431,7 +441,10 @@ mod tests {
         let small = pixel_mm(view_proj, eye, (640, 360), Vec3::new(0.0, 1.0, 0.0));
         assert!((small / far - 2.0).abs() < 0.01, "{small} {far}");
         // Behind the eye: no size (the penumbra is drawn).
-        assert_eq!(pixel_mm(view_proj, eye, (1280, 720), Vec3::new(0.0, 1.0, 9.0)), 0.0);
+        assert_eq!(
+            pixel_mm(view_proj, eye, (1280, 720), Vec3::new(0.0, 1.0, 9.0)),
+            0.0
+        );
         assert!(resolvable(3.7, 0.0) && resolvable(3.7, 2.0) && !resolvable(3.7, 6.0));
         assert!(resolvable(3.7, f32::NAN));
     }
