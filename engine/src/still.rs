@@ -5,7 +5,8 @@ use glam::{Mat4, Quat, Vec3};
 use crate::anim::Pose;
 use crate::camera::look_at;
 use crate::render::{
-    Gpu, Offscreen, PassCtx, PassTimer, PreparedFrame, Renderer, RgbaImage, OFFSCREEN_FORMAT,
+    Gpu, Offscreen, PassCtx, PassTimer, PipelineSet, PreparedFrame, Renderer, RgbaImage,
+    OFFSCREEN_FORMAT,
 };
 use crate::scene::{
     frame_bounds, posed_bounds, showroom, DrawSet, FramePacket, FrameView, Light, PropInstance,
@@ -66,7 +67,24 @@ impl StillRenderer {
         height: u32,
         format: wgpu::TextureFormat,
     ) -> Result<Self, String> {
-        let mut renderer = Renderer::new(gpu, format);
+        Self::with_pipelines(
+            gpu,
+            assets,
+            (width, height, format),
+            &PipelineSet::everything(),
+        )
+    }
+
+    /// Only the models in `set` (a shot of another model draws nothing): what one model's
+    /// still needs, so a model that reads no table makes none (`render --shading ward`) and
+    /// one that does makes only its own.
+    pub fn with_pipelines(
+        gpu: &Gpu,
+        assets: &SceneAssets,
+        (width, height, format): (u32, u32, wgpu::TextureFormat),
+        set: &PipelineSet,
+    ) -> Result<Self, String> {
+        let mut renderer = Renderer::with_pipelines(gpu, format, set);
         renderer.load_scene(gpu, (&assets.character, &assets.roles), &assets.props)?;
         renderer.resize(gpu, (width, height));
         Ok(Self {

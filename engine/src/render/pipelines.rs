@@ -82,6 +82,14 @@ impl PipelineSet {
         }
     }
 
+    /// One model's pipelines (a still of that model), no unlit baseline.
+    pub fn only(model: ShadingModel) -> Self {
+        Self {
+            models: vec![model],
+            unlit: false,
+        }
+    }
+
     /// The runner game: its menu can select every registry model, the governor's tiers are
     /// among them; no unlit baseline.
     pub fn game() -> Self {
