@@ -10,9 +10,10 @@
 //! shadow map. Cost: one seed pass (21 gathers and 108 slope tests per grid texel) and as
 //! many jump passes (nine loads each) as the material's reach needs — [`reach_for`]: a dozen
 //! diffusion lengths, at most [`REACH_MM`]; distances beyond are never read — over the grid:
-//! 128² for the game's 1024² map (skin1 at the runner's map: 3 jump passes), independent of
-//! the screen. Not run where the subject's pixels are wider than the material's spread
-//! ([`resolvable`]: the runner at the follow camera).
+//! 128² for the game's 1024² map (skin1 over the whole runner: 2 jump passes; the showroom's
+//! close-up: 3), independent of the screen. Not run where even the subject's nearest pixels
+//! are wider than the material's spread ([`subject_resolves`]: the runner at the follow
+//! camera).
 
 use super::{BuildCtx, Pass, Stage};
 use crate::render::layouts;
@@ -115,23 +116,39 @@ pub fn pixel_mm(view_proj: Mat4, eye: Vec3, viewport: (u32, u32), at: Vec3) -> f
 /// wider than that, the spread lies within the pixel at the edge (which the shadow test's ramp
 /// already blends), so the penumbra map would change nothing that can be seen.
 pub fn resolvable(diffusion_mm: f32, pixel_mm: f32) -> bool {
-    !(pixel_mm > diffusion_mm)
+    // (A pixel size that is not a number, or 0 behind the eye: drawn.)
+    pixel_mm.is_nan() || pixel_mm <= diffusion_mm
 }
 
-/// The world centre of `subject`'s bind-pose bounds (its meshes' boxes, placed).
-fn subject_centre(subject: &SubjectPose) -> Vec3 {
+/// The sphere around `subject`'s bind-pose bounds (its meshes' boxes), placed: centre, radius.
+fn subject_sphere(subject: &SubjectPose) -> (Vec3, f32) {
     let mut lo = Vec3::splat(f32::INFINITY);
     let mut hi = Vec3::splat(f32::NEG_INFINITY);
     for p in subject.model.meshes.iter().flat_map(|m| &m.primitives) {
         lo = lo.min(p.bounds.min);
         hi = hi.max(p.bounds.max);
     }
-    let centre = if lo.x <= hi.x {
-        0.5 * (lo + hi)
-    } else {
-        Vec3::ZERO
-    };
-    subject.world.transform_point3(centre)
+    if lo.x > hi.x {
+        return (subject.world.transform_point3(Vec3::ZERO), 0.0);
+    }
+    let half = subject.world.transform_vector3(0.5 * (hi - lo)).length();
+    (subject.world.transform_point3(0.5 * (lo + hi)), half)
+}
+
+/// Whether the subject's nearest part (its bounding sphere's point nearest the eye; the eye
+/// inside it: yes) resolves the spread of a material whose longest diffusion length is
+/// `diffusion_mm` ([`resolvable`]).
+pub fn subject_resolves(packet: &FramePacket, subject: &SubjectPose, diffusion_mm: f32) -> bool {
+    let (centre, radius) = subject_sphere(subject);
+    let view = &packet.view;
+    let to = centre - view.camera_pos;
+    let d = to.length();
+    if d <= radius || d <= 0.0 {
+        return true;
+    }
+    let nearest = view.camera_pos + to * ((d - radius) / d);
+    let px = pixel_mm(view.view_proj, view.camera_pos, packet.viewport, nearest);
+    resolvable(diffusion_mm, px)
 }
 
 /// The bind group layout of both passes.
@@ -298,7 +315,7 @@ impl Pass for PenumbraPass {
     }
 
     /// Runs in frames with a shadow map that draw a model with the `penumbra` effect, where
-    /// the subject's pixels resolve its material's spread ([`resolvable`]): as many jump
+    /// the subject's pixels resolve its material's spread ([`subject_resolves`]): as many jump
     /// passes as reach the material's [`reach_for`] over the map's width this frame.
     fn prepare(
         &mut self,
@@ -312,14 +329,10 @@ impl Pass for PenumbraPass {
             && frame.draw.shading.is_some_and(|m| m.effects().penumbra);
         let diffusion = res.models.diffusion_mm();
         // Where the subject's pixels are wider than its material's spread, nothing to draw.
-        let shows = packet.subject.as_ref().is_none_or(|s| {
-            let view = &packet.view;
-            let at = subject_centre(s);
-            resolvable(
-                diffusion,
-                pixel_mm(view.view_proj, view.camera_pos, packet.viewport, at),
-            )
-        });
+        let shows = packet
+            .subject
+            .as_ref()
+            .is_none_or(|s| subject_resolves(packet, s, diffusion));
         if !(frame.shadow.drawn && reads && shows) {
             return PassFrame::default();
         }
