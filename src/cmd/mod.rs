@@ -1,4 +1,5 @@
 pub mod albedo;
+pub mod albedo_sweep;
 pub mod args;
 pub mod bench;
 pub mod bench_distance;

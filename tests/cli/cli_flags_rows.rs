@@ -248,6 +248,7 @@ pub const ROWS: &[Row] = &[
     row("albedo", "photons", Kind::Count),
     row("albedo", "seed", Kind::Count),
     row("albedo", "json", Kind::Switch),
+    row("albedo", "sweep", Kind::OutFile { ext: Some("json") }),
     row("texturing", "out", Kind::OutDir),
     row("texturing", "photons", Kind::Count),
     row("texturing", "seed", Kind::Count),
