@@ -1,7 +1,8 @@
 //! `bench frame`'s game frames: the showroom's close-up on the main menu and the runner at the
 //! follow camera in play, each frozen (drawn again and again at one instant), measured per
 //! shading model: how many pixels the skin covers (the frame drawn with `ward` against the
-//! same frame with `preintegrated`: nothing else differs), whether the penumbra map runs and
+//! same frame with the first model of the penumbra effect, the tier that reads the penumbra
+//! map: nothing else differs), whether the penumbra map runs and
 //! with how many jump passes, and the whole frame's GPU time (every pass: shadow map, penumbra
 //! map, scene, subsurface, UI) as a ratio to `ward`'s with a 95 % CI. With Mali cycles
 //! (`--mali`), each one-pass model's price per skin pixel at each framing: its fragment
@@ -33,9 +34,9 @@ const START_FRAMES: usize = 600;
 /// One framing's measurements.
 pub struct Framing {
     pub name: &'static str,
-    /// Pixels that differ between the `ward` and the `preintegrated` frame.
+    /// Pixels that differ between the `ward` frame and the penumbra tier's.
     pub skin_pixels: u64,
-    /// Jump passes of the penumbra map in the `preintegrated` frame (`None`: not run).
+    /// Jump passes of the penumbra map in the penumbra tier's frame (`None`: not run).
     pub penumbra_jumps: Option<usize>,
     /// Per model (`models` order): GPU ms per round.
     pub gpu_ms: Vec<Vec<f64>>,
@@ -70,6 +71,10 @@ pub fn measure(
         .iter()
         .position(|n| *n == "penumbra")
         .ok_or("no penumbra pass")?;
+    let penumbra_tier = ShadingModel::ALL
+        .into_iter()
+        .find(|m| m.effects().penumbra)
+        .ok_or("no model reads the penumbra map")?;
     let mut out = Vec::new();
     let mut frames = 0usize;
     for (name, wanted) in [("showroom", Screen::Main), ("follow", Screen::Play)] {
@@ -96,7 +101,7 @@ pub fn measure(
                 ));
             }
         }
-        // The skin: what `ward` and `preintegrated` draw differently at this instant.
+        // The skin: what `ward` and the penumbra tier draw differently at this instant.
         let mut shot = |session: &mut Session, m: ShadingModel| -> Result<_, String> {
             choose(session, m);
             let mut copy =
@@ -111,7 +116,7 @@ pub fn measure(
             Ok((target.read(gpu), runs))
         };
         let (ward, _) = shot(&mut session, ShadingModel::BASELINE)?;
-        let (pre, runs) = shot(&mut session, ShadingModel::Preintegrated)?;
+        let (pre, runs) = shot(&mut session, penumbra_tier)?;
         let skin_pixels = differing(&ward, &pre);
         let penumbra_jumps = (runs > 0).then(|| runs as usize - 1);
         // GPU time per model, in rotating order, after a frame of each.
