@@ -23,8 +23,10 @@ pub struct BenchArgs {
 #[derive(clap::Subcommand, Debug)]
 pub enum BenchKind {
     /// Time to first frame, CPU time per frame, each model's GPU time for a close-up
-    /// character pass as a ratio to `ward`, and the cost of blob shadows on that pass with
-    /// the floor (on/off ratio).
+    /// character pass as a ratio to `ward`, the cost of blob shadows on that pass with the
+    /// floor (on/off ratio), and the game's own frames (the showroom's close-up, the runner at
+    /// the follow camera): skin pixels, the penumbra map's passes, each model's whole frame
+    /// as a ratio to `ward`'s and, with `--mali`, its Mali cycles per skin pixel.
     Frame {
         /// Rounds of GPU timing, at least 2 (each round times every model once, in rotating
         /// order, then the blob-shadow models off and on, in alternating order).
@@ -50,6 +52,10 @@ pub enum BenchKind {
         /// this directory (loaded, then saved once every pipeline is built).
         #[arg(long, requires = "first_frame_only")]
         pipeline_cache: Option<PathBuf>,
+        /// Mali cycles (`tools/mali/cycles.sh` JSON of `dermis shaders --spirv`): price each
+        /// model per skin pixel at the game's framings.
+        #[arg(long)]
+        mali: Option<PathBuf>,
     },
     /// The scene's textures loaded and uploaded three ways (block encodings as stored, ETC2
     /// decoded on the CPU, the PNG/JPEG sources decoded): CPU time and GPU bytes of each.
@@ -71,9 +77,24 @@ pub fn run(args: BenchArgs) -> Result<(), String> {
             json,
             first_frame_only,
             pipeline_cache,
+            mali,
         } => match (first_frame_only, pipeline_cache) {
             (true, None) => two_launches(out, json),
-            (first_frame_only, cache) => frame(rounds, frames, out, json, first_frame_only, cache),
+            (first_frame_only, cache) => {
+                let mali = mali
+                    .map(|p| crate::cmd::shaders::read_cycles(&p))
+                    .transpose()?;
+                let opts = FrameOpts {
+                    rounds,
+                    frames,
+                    out,
+                    print_json: json,
+                    first_frame_only,
+                    pipeline_cache: cache,
+                    mali,
+                };
+                frame(opts)
+            }
         },
         BenchKind::Textures(args) => crate::cmd::bench_textures::run(args),
         BenchKind::Shading(args) => crate::cmd::bench_shading::run(*args),
@@ -163,14 +184,27 @@ fn two_launches(out: Option<PathBuf>, print_json: bool) -> Result<(), String> {
     Ok(())
 }
 
-fn frame(
+/// `bench frame`'s options (checked, the Mali cycles read).
+struct FrameOpts {
     rounds: usize,
     frames: usize,
     out: Option<PathBuf>,
     print_json: bool,
     first_frame_only: bool,
     pipeline_cache: Option<PathBuf>,
-) -> Result<(), String> {
+    mali: Option<serde_json::Value>,
+}
+
+fn frame(opts: FrameOpts) -> Result<(), String> {
+    let FrameOpts {
+        rounds,
+        frames,
+        out,
+        print_json,
+        first_frame_only,
+        pipeline_cache,
+        mali,
+    } = opts;
     if let Some(path) = &out {
         check_out_file(path, Some("json"))?;
     }
@@ -281,7 +315,7 @@ fn frame(
     };
     // Steps: close-up, the CPU frames (in eighths), the GPU rounds, the blob shadows'
     // coverage and their rounds.
-    let mut progress = Progress::new("bench frame", (2 + 8 + 2 * rounds) as u64);
+    let mut progress = Progress::new("bench frame", (2 + 8 + 4 * rounds) as u64);
 
     // Close-up: the character alone, zoomed until it covers at least 40 % of the frame.
     let mut close = Shot {
@@ -362,6 +396,20 @@ fn frame(
     } else {
         (None, Vec::new())
     };
+    // The game's own frames at its two framings, every model.
+    let game_frames = if gpu.timestamps {
+        let framings = crate::cmd::bench_distance::measure(
+            &gpu,
+            &assets,
+            (w, h),
+            &ShadingModel::ALL,
+            rounds,
+            || progress.step("game frames"),
+        )?;
+        crate::cmd::bench_distance::report(&framings, &ShadingModel::ALL, mali.as_ref())
+    } else {
+        serde_json::Value::Null
+    };
     progress.finish();
     let name = |m: &Option<ShadingModel>| m.map_or("unlit", |m| m.name());
     let ward_at = models
@@ -408,6 +456,7 @@ fn frame(
         "models": per_model,
         "blob_shadow_pixels": blob_pixels,
         "blob_shadows": blob_shadows,
+        "game_frames": game_frames,
     });
     let text = serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?;
     if let Some(path) = &out {
@@ -482,5 +531,9 @@ fn frame(
             },
         );
     }
+    print!(
+        "{}",
+        crate::cmd::bench_distance::table(&report["game_frames"])
+    );
     Ok(())
 }

@@ -30,7 +30,7 @@ use glam::{Mat4, Vec3};
 use serde_json::{json, Map, Value};
 
 use crate::cmd::pareto::{self, aggregate, family, SceneScore};
-use crate::cmd::shaders::{mali_cost, read_cycles};
+use crate::cmd::shaders::{mali_cost, read_cycles, PenumbraRun};
 use crate::cmd::stats::{median, ratio_ci};
 
 #[derive(clap::Args, Debug)]
@@ -443,6 +443,7 @@ fn build_report(
         }
     }
     let material = &sets[0].0;
+    let penumbra = PenumbraRun::runner(dermis_engine::shading::edge_spread::reach_mm(material));
     let n = times.len();
     let (ward, unlit) = (&times[0], &times[n - 1]);
     let mut rows = Vec::new();
@@ -461,6 +462,7 @@ fn build_report(
                     rings,
                     subsurface::ANGLES as usize,
                     (COST_SIZE.0 * COST_SIZE.1) as f64,
+                    penumbra,
                 )
             });
             m_json.insert(

@@ -310,6 +310,7 @@ pub const ROWS: &[Row] = &[
     row("bench frame", "out", Kind::OutFile { ext: Some("json") }),
     row("bench frame", "first-frame-only", Kind::Switch),
     row("bench frame", "json", Kind::Switch),
+    row("bench frame", "mali", Kind::InFile),
     with(
         "bench frame",
         "pipeline-cache",

@@ -184,15 +184,25 @@ impl Scene {
         r
     }
 
-    /// One frame drawing `draw` (a UI of one quad when `draw.ui`); its statistics and what
-    /// each pass decided.
+    /// One frame drawing `draw` (a UI of one quad when `draw.ui`), the whole character in
+    /// view; its statistics and what each pass decided.
     fn frame(&self, r: &mut Renderer, draw: DrawSet) -> (RenderStats, [bool; PASS_COUNT]) {
+        self.frame_from(r, draw, Vec3::new(1.2, 1.5, 3.5), Vec3::new(0.0, 0.9, 0.0))
+    }
+
+    /// The same from `eye`, looking at `at`.
+    fn frame_from(
+        &self,
+        r: &mut Renderer,
+        draw: DrawSet,
+        eye: Vec3,
+        at: Vec3,
+    ) -> (RenderStats, [bool; PASS_COUNT]) {
         let model = &self.assets.character;
         let mut pose = dermis_engine::anim::Pose::new(model);
         pose.update_world(model);
-        let eye = Vec3::new(1.2, 1.5, 3.5);
         let view = FrameView {
-            view_proj: look_at(eye, Vec3::new(0.0, 0.9, 0.0), 0.8, 160.0 / 120.0),
+            view_proj: look_at(eye, at, 0.8, 160.0 / 120.0),
             camera_pos: eye,
             light: key_light(Vec3::ZERO),
             exposure: EXPOSURE,
@@ -235,7 +245,8 @@ fn every_pass_is_built_where_needed_and_records_when_it_runs() {
     // Every model, so every effect is reachable: every pass is built.
     let mut all = scene.renderer(&PipelineSet::everything());
     assert_eq!(all.passes_built(), [true; PASS_COUNT], "{NAMES:?}");
-    // The penumbra tier and a screen-space tier between them run every pass; a pass that
+    // The penumbra tier close up (the face, 0.4 m away: 3 mm pixels, finer than skin's
+    // diffusion length) and a screen-space tier between them run every pass; a pass that
     // runs records, one that does not records nothing.
     let penumbra = ShadingModel::ALL
         .into_iter()
@@ -246,8 +257,20 @@ fn every_pass_is_built_where_needed_and_records_when_it_runs() {
         .find(|m| m.effects().screen_space)
         .unwrap();
     let mut ran = [false; PASS_COUNT];
+    let slot_of = |name: &str| NAMES.iter().position(|n| *n == name).unwrap();
+    // The whole character in 120 pixels (~3 cm each): the penumbra would change nothing seen.
+    let (_, far) = scene.frame(&mut all, everything(penumbra));
+    assert!(!far[slot_of("penumbra")], "no penumbra map for 3 cm pixels");
+    let face = (Vec3::new(0.1, 1.5, 0.4), Vec3::new(0.0, 1.45, 0.0));
     for model in [penumbra, split] {
-        let (stats, runs) = scene.frame(&mut all, everything(model));
+        let (stats, runs) = if model == penumbra {
+            scene.frame_from(&mut all, everything(model), face.0, face.1)
+        } else {
+            scene.frame(&mut all, everything(model))
+        };
+        if model == penumbra {
+            assert!(runs[slot_of("penumbra")], "the penumbra map close up");
+        }
         for slot in 0..PASS_COUNT {
             assert_eq!(
                 runs[slot],
