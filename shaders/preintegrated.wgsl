@@ -76,7 +76,8 @@ fn penumbra(s: Surface, v: f32) -> vec4<f32> {
 }
 
 fn shade(s: Surface) -> vec3<f32> {
-    let exit = lut_row(dot(s.n, s.v), LUT_CURVATURE_ROWS).r;
+    // Not below EXIT_COSINE_MIN: no dark outline at silhouettes (subsurface.rs).
+    let exit = lut_row(max(dot(s.n, s.v), EXIT_COSINE_MIN), LUT_CURVATURE_ROWS).r;
     // Curvature axis: v = R0 / (R0 + ρ), within the curvature rows.
     let rho_mm = s.curvature_radius * MM_PER_M;
     let v = model.lut_r0_mm / (model.lut_r0_mm + rho_mm);
