@@ -30,14 +30,9 @@ pub fn bake_table(
         photons,
         seed,
     };
-    for r in 0..ETA_NODES {
-        let curve = mc::albedo::multi_scatter_curve(
-            row_eta(r),
-            &interior,
-            photons,
-            seed + ROW_SEED[r],
-            threads,
-        );
+    for (r, offset) in ROW_SEED.iter().enumerate() {
+        let curve =
+            mc::albedo::multi_scatter_curve(row_eta(r), &interior, photons, seed + offset, threads);
         t.multi[r][0] = 1.0;
         for (k, e) in curve.multi.iter().enumerate() {
             t.multi[r][k + 1] = e.mean as f32;
