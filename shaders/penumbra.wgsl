@@ -6,9 +6,11 @@
 //
 // Seed pass: a grid texel (a block of PENUMBRA_BLOCK² map texels) is a seed when a caster's
 // edge lies in its block or on its one-texel border: a depth step that breaks the local slope
-// by more than a gap (see `edge`); its depth is the edge's near side. Jump flooding (Rong & Tan 2006): passes with
-// halving steps each keep the nearest seed among nine texels a step apart. Loops are written
-// out, so a static cycle count sees every fetch.
+// by more than a gap (see `line`), on one of six rows and six columns of the block (three
+// pairs of neighbouring lines, two lines between pairs, so that 21 gathers serve them all);
+// its depth is the edge's near side. Jump flooding (Rong & Tan 2006): passes with halving steps each keep the nearest seed
+// among nine texels a step apart. Loops are written out, so a static cycle count sees every
+// fetch.
 //
 // Texel: xy the seed's position (uv of the map), z the caster's depth there, w 1 (0: none).
 
@@ -19,7 +21,7 @@
 // engine/src/shader/uniforms.rs).
 #import PenumbraUniform
 
-// The seed pass's strips are written out for blocks of 8 × 8 map texels: a block of another
+// The seed pass's lines are written out for blocks of 8 × 8 map texels: a block of another
 // size in the Rust side's constant stops the composition here.
 const_assert PENUMBRA_BLOCK == 8u;
 
@@ -28,50 +30,56 @@ const_assert PENUMBRA_BLOCK == 8u;
 @group(0) @binding(2) var depth_sampler: sampler;
 @group(0) @binding(3) var previous: texture_2d<f32>;
 
-// `z` or, where the step b → c is a caster's edge, the depth of its near side if nearer; two
-// lines at once. A step is an edge where it breaks the local slope: it differs by more than
-// the gap from both of its neighbouring steps (a → b, c → e). A smooth surface turned far
-// from the light has large but nearly equal steps and is no edge however steep; a silhouette
-// over what lies behind it (or over nothing: the cleared depth 1) breaks the slope on both
-// sides.
-fn edge(z: f32, a: vec2<f32>, b: vec2<f32>, c: vec2<f32>, e: vec2<f32>) -> f32 {
-    let s = c - b;
-    let broken = min(abs(s - (b - a)), abs(s - (e - c))) > vec2<f32>(jump.edge_gap);
-    let near = select(vec2<f32>(2.0), min(b, c), broken);
-    return min(z, min(near.x, near.y));
+// `z` or the nearest edge on one line of ten map texels (block texels −1…8, in order): the
+// depth of an edge's near side, if nearer. A step is an edge where it breaks the local slope:
+// it differs by more than the gap from both of its neighbouring steps (an end step from the
+// one it has). A smooth surface turned far from the light has large but nearly equal steps
+// and is no edge however steep; a silhouette over what lies behind it (or over nothing: the
+// cleared depth 1) breaks the slope on both sides.
+fn line(z: f32, a: vec4<f32>, b: vec4<f32>, c: vec2<f32>) -> f32 {
+    let t = array<f32, 10>(a.x, a.y, a.z, a.w, b.x, b.y, b.z, b.w, c.x, c.y);
+    let s0 = t[1] - t[0];
+    let s1 = t[2] - t[1];
+    let s2 = t[3] - t[2];
+    let s3 = t[4] - t[3];
+    let s4 = t[5] - t[4];
+    let s5 = t[6] - t[5];
+    let s6 = t[7] - t[6];
+    let s7 = t[8] - t[7];
+    let s8 = t[9] - t[8];
+    // How far each step's slope breaks from the one before.
+    let d1 = abs(s1 - s0);
+    let d2 = abs(s2 - s1);
+    let d3 = abs(s3 - s2);
+    let d4 = abs(s4 - s3);
+    let d5 = abs(s5 - s4);
+    let d6 = abs(s6 - s5);
+    let d7 = abs(s7 - s6);
+    let d8 = abs(s8 - s7);
+    let gap = jump.edge_gap;
+    var r = z;
+    r = min(r, select(2.0, min(t[0], t[1]), d1 > gap));
+    r = min(r, select(2.0, min(t[1], t[2]), min(d1, d2) > gap));
+    r = min(r, select(2.0, min(t[2], t[3]), min(d2, d3) > gap));
+    r = min(r, select(2.0, min(t[3], t[4]), min(d3, d4) > gap));
+    r = min(r, select(2.0, min(t[4], t[5]), min(d4, d5) > gap));
+    r = min(r, select(2.0, min(t[5], t[6]), min(d5, d6) > gap));
+    r = min(r, select(2.0, min(t[6], t[7]), min(d6, d7) > gap));
+    r = min(r, select(2.0, min(t[7], t[8]), min(d7, d8) > gap));
+    r = min(r, select(2.0, min(t[8], t[9]), d8 > gap));
+    return r;
 }
 
-// `z` and the nearest edge among the steps of a strip of 2 × 12 map texels: six gathers `at`,
-// `at` + `along`, … (two texels apart), each turned by `turn` so that .w, .z are the first
-// line's texels and .x, .y the second's, in order along the strip. Each line's nine middle
-// steps are tested; its end texels only give the end steps their neighbours.
-fn strip(z: f32, at: vec2<f32>, along: vec2<f32>, turn: bool) -> f32 {
-    var g0 = textureGather(depth_map, depth_sampler, at);
-    var g1 = textureGather(depth_map, depth_sampler, at + along);
-    var g2 = textureGather(depth_map, depth_sampler, at + 2.0 * along);
-    var g3 = textureGather(depth_map, depth_sampler, at + 3.0 * along);
-    var g4 = textureGather(depth_map, depth_sampler, at + 4.0 * along);
-    var g5 = textureGather(depth_map, depth_sampler, at + 5.0 * along);
-    if (turn) {
-        // A column strip: the left column is .w, .x and the right .z, .y of each gather.
-        g0 = g0.zyxw;
-        g1 = g1.zyxw;
-        g2 = g2.zyxw;
-        g3 = g3.zyxw;
-        g4 = g4.zyxw;
-        g5 = g5.zyxw;
-    }
-    var r = z;
-    r = edge(r, g0.wx, g0.zy, g1.wx, g1.zy);
-    r = edge(r, g0.zy, g1.wx, g1.zy, g2.wx);
-    r = edge(r, g1.wx, g1.zy, g2.wx, g2.zy);
-    r = edge(r, g1.zy, g2.wx, g2.zy, g3.wx);
-    r = edge(r, g2.wx, g2.zy, g3.wx, g3.zy);
-    r = edge(r, g2.zy, g3.wx, g3.zy, g4.wx);
-    r = edge(r, g3.wx, g3.zy, g4.wx, g4.zy);
-    r = edge(r, g3.zy, g4.wx, g4.zy, g5.wx);
-    r = edge(r, g4.wx, g4.zy, g5.wx, g5.zy);
-    return r;
+// Rows `up` (.w .z of each gather, a gather two texels across) and `down` (.x .y) as lines.
+fn rows(z: f32, g0: vec4<f32>, g1: vec4<f32>, g2: vec4<f32>, g3: vec4<f32>, g4: vec4<f32>) -> f32 {
+    let up = line(z, vec4<f32>(g0.wz, g1.wz), vec4<f32>(g2.wz, g3.wz), g4.wz);
+    return line(up, vec4<f32>(g0.xy, g1.xy), vec4<f32>(g2.xy, g3.xy), g4.xy);
+}
+
+// Columns (.w .x of each gather, a gather two texels down, and .z .y) as lines.
+fn columns(z: f32, g0: vec4<f32>, g1: vec4<f32>, g2: vec4<f32>, g3: vec4<f32>, g4: vec4<f32>) -> f32 {
+    let left = line(z, vec4<f32>(g0.wx, g1.wx), vec4<f32>(g2.wx, g3.wx), g4.wx);
+    return line(left, vec4<f32>(g0.zy, g1.zy), vec4<f32>(g2.zy, g3.zy), g4.zy);
 }
 
 @fragment
@@ -80,23 +88,45 @@ fn fs_seed(@builtin(position) at: vec4<f32>) -> @location(0) vec4<f32> {
     // The block's centre: a texel corner (block texels 0…7, the corner at 4).
     let centre = at.xy / size;
     let texel = 1.0 / (size * f32(PENUMBRA_BLOCK));
-    // The 10×10 of the block and its one-texel border (texels −1…8; a step into a
-    // neighbour's block seeds both), each line with one more texel at either end: five strips
-    // of two rows (−1/0, 1/2, …, 7/8) along x, then five of two columns along y.
-    let x = vec2<f32>(2.0 * texel, 0.0);
-    let y = vec2<f32>(0.0, 2.0 * texel);
-    let first = centre - 5.0 * vec2<f32>(texel);
+    // A gather at the corner o + (2i, 2j) texels holds block texels 2i − 1, 2i across and
+    // 2j − 1, 2j down (.w .z the upper pair, .x .y the lower). Lines over the block and its
+    // one-texel border (texels −1…8; a step into a neighbour's block seeds both): the rows
+    // −1, 0, 3, 4, 7, 8 and the same columns, three gathers' pairs each way; an outline that
+    // crosses the block over more than three texels crosses one of them.
+    let o = centre - 4.0 * vec2<f32>(texel);
+    let g = array<vec2<f32>, 5>(o, o + vec2<f32>(2.0 * texel), o + vec2<f32>(4.0 * texel),
+                                o + vec2<f32>(6.0 * texel), o + vec2<f32>(8.0 * texel));
     var z = 2.0;
-    z = strip(z, vec2<f32>(first.x, centre.y - 4.0 * texel), x, false);
-    z = strip(z, vec2<f32>(first.x, centre.y - 2.0 * texel), x, false);
-    z = strip(z, vec2<f32>(first.x, centre.y), x, false);
-    z = strip(z, vec2<f32>(first.x, centre.y + 2.0 * texel), x, false);
-    z = strip(z, vec2<f32>(first.x, centre.y + 4.0 * texel), x, false);
-    z = strip(z, vec2<f32>(centre.x - 4.0 * texel, first.y), y, true);
-    z = strip(z, vec2<f32>(centre.x - 2.0 * texel, first.y), y, true);
-    z = strip(z, vec2<f32>(centre.x, first.y), y, true);
-    z = strip(z, vec2<f32>(centre.x + 2.0 * texel, first.y), y, true);
-    z = strip(z, vec2<f32>(centre.x + 4.0 * texel, first.y), y, true);
+    z = rows(z, textureGather(depth_map, depth_sampler, vec2<f32>(g[0].x, g[0].y)),
+        textureGather(depth_map, depth_sampler, vec2<f32>(g[1].x, g[0].y)),
+        textureGather(depth_map, depth_sampler, vec2<f32>(g[2].x, g[0].y)),
+        textureGather(depth_map, depth_sampler, vec2<f32>(g[3].x, g[0].y)),
+        textureGather(depth_map, depth_sampler, vec2<f32>(g[4].x, g[0].y)));
+    z = rows(z, textureGather(depth_map, depth_sampler, vec2<f32>(g[0].x, g[2].y)),
+        textureGather(depth_map, depth_sampler, vec2<f32>(g[1].x, g[2].y)),
+        textureGather(depth_map, depth_sampler, vec2<f32>(g[2].x, g[2].y)),
+        textureGather(depth_map, depth_sampler, vec2<f32>(g[3].x, g[2].y)),
+        textureGather(depth_map, depth_sampler, vec2<f32>(g[4].x, g[2].y)));
+    z = rows(z, textureGather(depth_map, depth_sampler, vec2<f32>(g[0].x, g[4].y)),
+        textureGather(depth_map, depth_sampler, vec2<f32>(g[1].x, g[4].y)),
+        textureGather(depth_map, depth_sampler, vec2<f32>(g[2].x, g[4].y)),
+        textureGather(depth_map, depth_sampler, vec2<f32>(g[3].x, g[4].y)),
+        textureGather(depth_map, depth_sampler, vec2<f32>(g[4].x, g[4].y)));
+    z = columns(z, textureGather(depth_map, depth_sampler, vec2<f32>(g[0].x, g[0].y)),
+        textureGather(depth_map, depth_sampler, vec2<f32>(g[0].x, g[1].y)),
+        textureGather(depth_map, depth_sampler, vec2<f32>(g[0].x, g[2].y)),
+        textureGather(depth_map, depth_sampler, vec2<f32>(g[0].x, g[3].y)),
+        textureGather(depth_map, depth_sampler, vec2<f32>(g[0].x, g[4].y)));
+    z = columns(z, textureGather(depth_map, depth_sampler, vec2<f32>(g[2].x, g[0].y)),
+        textureGather(depth_map, depth_sampler, vec2<f32>(g[2].x, g[1].y)),
+        textureGather(depth_map, depth_sampler, vec2<f32>(g[2].x, g[2].y)),
+        textureGather(depth_map, depth_sampler, vec2<f32>(g[2].x, g[3].y)),
+        textureGather(depth_map, depth_sampler, vec2<f32>(g[2].x, g[4].y)));
+    z = columns(z, textureGather(depth_map, depth_sampler, vec2<f32>(g[4].x, g[0].y)),
+        textureGather(depth_map, depth_sampler, vec2<f32>(g[4].x, g[1].y)),
+        textureGather(depth_map, depth_sampler, vec2<f32>(g[4].x, g[2].y)),
+        textureGather(depth_map, depth_sampler, vec2<f32>(g[4].x, g[3].y)),
+        textureGather(depth_map, depth_sampler, vec2<f32>(g[4].x, g[4].y)));
     if (z <= 1.0) {
         return vec4<f32>(centre, z, 1.0);
     }

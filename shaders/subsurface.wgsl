@@ -101,7 +101,7 @@ fn sss_spread_channel(s: Surface, dir: vec3<f32>, rho: f32, delta: f32, ddelta: 
 }
 
 fn sss_exit(s: Surface) -> f32 {
-    return fresnel_transmittance(model.eta, max(dot(s.n, s.v), 0.0)) * model.exit_norm;
+    return fresnel_transmittance(model.eta, max(dot(s.n, s.v), EXIT_COSINE_MIN)) * model.exit_norm;
 }
 
 #ifdef TRANSLUCENCY

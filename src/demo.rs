@@ -6,7 +6,7 @@ use std::path::Path;
 use dermis_engine::anim::Pose;
 use dermis_engine::camera::FollowCamera;
 use dermis_engine::render::{
-    FrameOutput, FrameWork, Gpu, PassCtx, PreparedFrame, RenderStats, Renderer,
+    FrameDriver, FrameOutput, FrameStatus, FrameTimes, Gpu, Output, RenderStats, Renderer,
 };
 use dermis_engine::scene::{
     posed_bounds, showroom, DrawSet, FramePacket, FrameView, Light, PropInstance, Roles,
@@ -139,7 +139,7 @@ impl Demo {
                 pose: &self.pose,
                 world: self.world(),
             }),
-            props: Some(&self.props),
+            props: &self.props,
             ..FramePacket::new(viewport, self.frame_view(aspect), draw)
         }
     }
@@ -165,13 +165,12 @@ impl Demo {
 /// A hook run after a demo frame's passes are recorded (screenshots).
 pub type AfterEncode<'h> = dyn FnMut(&mut wgpu::CommandEncoder, &FrameOutput<'_>) + 'h;
 
-/// The demo as the frame driver runs it.
+/// One demo frame, straight-line code between the frame helpers (as the game's frame):
+/// begin → update → the demo's packet → prepare → encode → finish.
 pub struct DemoFrame<'a> {
     pub demo: &'a mut Demo,
     pub renderer: &'a mut Renderer,
     pub after_encode: Option<&'a mut AfterEncode<'a>>,
-    viewport: (u32, u32),
-    frame: Option<PreparedFrame>,
 }
 
 impl<'a> DemoFrame<'a> {
@@ -180,47 +179,37 @@ impl<'a> DemoFrame<'a> {
             demo,
             renderer,
             after_encode: None,
-            viewport: (1, 1),
-            frame: None,
         }
     }
-}
 
-impl FrameWork for DemoFrame<'_> {
-    fn resize(&mut self, gpu: &Gpu, width: u32, height: u32) {
-        self.renderer.resize(gpu, (width, height));
-    }
-
-    fn update(&mut self, dt: f64, width: u32, height: u32) {
-        self.demo.update(dt as f32);
-        self.viewport = (width, height);
-    }
-
-    fn upload(&mut self, gpu: &Gpu) {
-        let packet = self.demo.packet(self.viewport);
-        self.frame = Some(self.renderer.prepare(gpu, &packet));
-    }
-
-    fn encode(
+    /// Runs one frame with `driver` into `output`.
+    pub fn run(
         &mut self,
-        encoder: &mut wgpu::CommandEncoder,
-        output: &FrameOutput<'_>,
-    ) -> RenderStats {
-        let Some(frame) = &self.frame else {
-            return RenderStats::default();
-        };
-        let stats = self.renderer.encode(
-            frame,
-            &mut PassCtx {
-                encoder,
-                targets: output.targets,
-                output: output.view,
-                timer: None,
-            },
-        );
+        driver: &mut FrameDriver,
+        gpu: &Gpu,
+        mut output: Output<'_>,
+    ) -> Result<FrameTimes, FrameStatus> {
+        let mut frame = driver.begin(gpu, &mut output)?;
+        self.renderer.resize(gpu, frame.size);
+        self.demo.update(frame.dt as f32);
+        driver.updated(&mut frame);
+        let packet = self.demo.packet(frame.size);
+        let prepared = self.renderer.prepare(gpu, &packet);
+        let stats = self
+            .renderer
+            .encode(&prepared, &mut frame.pass_ctx(&output))
+            .unwrap_or_else(|e| {
+                log::error!("{e}");
+                RenderStats::default()
+            });
         if let Some(hook) = &mut self.after_encode {
-            hook(encoder, output);
+            let out = FrameOutput {
+                targets: output.targets(),
+                view: &frame.view,
+                texture: &frame.texture,
+            };
+            hook(&mut frame.encoder, &out);
         }
-        stats
+        Ok(driver.finish(gpu, frame, &mut output, stats))
     }
 }

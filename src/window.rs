@@ -296,7 +296,7 @@ impl App {
             } => {
                 let mut frame = DemoFrame::new(demo, r);
                 frame.after_encode = Some(&mut record);
-                g.driver.frame(&g.gpu, output, &mut frame)
+                frame.run(&mut g.driver, &g.gpu, output)
             }
             _ => return Ok(()),
         };

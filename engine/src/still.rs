@@ -1,11 +1,13 @@
 //! One still frame rendered offscreen: the `render` command, the image tests and the benches.
 
+use crate::render::passes::PassId;
 use glam::{Mat4, Quat, Vec3};
 
 use crate::anim::Pose;
 use crate::camera::look_at;
 use crate::render::{
-    Gpu, Offscreen, PassCtx, PassTimer, PreparedFrame, Renderer, RgbaImage, OFFSCREEN_FORMAT,
+    Gpu, Offscreen, PassCtx, PassTimer, PipelineSet, PreparedFrame, Renderer, RgbaImage,
+    OFFSCREEN_FORMAT,
 };
 use crate::scene::{
     frame_bounds, posed_bounds, showroom, DrawSet, FramePacket, FrameView, Light, PropInstance,
@@ -42,6 +44,15 @@ impl Shot {
     }
 }
 
+/// Where a still places its character and camera ([`StillRenderer::framing`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Framing {
+    /// The character's placement in the world.
+    pub world: Mat4,
+    /// The camera and the light.
+    pub view: FrameView,
+}
+
 /// A renderer with the scene uploaded and an offscreen target, reused across shots.
 pub struct StillRenderer {
     pub renderer: Renderer,
@@ -66,7 +77,24 @@ impl StillRenderer {
         height: u32,
         format: wgpu::TextureFormat,
     ) -> Result<Self, String> {
-        let mut renderer = Renderer::new(gpu, format);
+        Self::with_pipelines(
+            gpu,
+            assets,
+            (width, height, format),
+            &PipelineSet::everything(),
+        )
+    }
+
+    /// Only the models in `set` (a shot of another model draws nothing): what one model's
+    /// still needs, so a model that reads no table makes none (`render --shading ward`) and
+    /// one that does makes only its own.
+    pub fn with_pipelines(
+        gpu: &Gpu,
+        assets: &SceneAssets,
+        (width, height, format): (u32, u32, wgpu::TextureFormat),
+        set: &PipelineSet,
+    ) -> Result<Self, String> {
+        let mut renderer = Renderer::with_pipelines(gpu, format, set);
         renderer.load_scene(gpu, (&assets.character, &assets.roles), &assets.props)?;
         renderer.resize(gpu, (width, height));
         Ok(Self {
@@ -81,37 +109,29 @@ impl StillRenderer {
 
     /// Builds and switches on the renderer's blob shadows under the character and the
     /// showroom props (drawn only in shots with props); returns whether they exist. Stills
-    /// have none unless this is called; `renderer.set_blob_shadows` switches them.
+    /// have none unless this is called; `renderer.switch(PassId::blobs, on)` switches them.
     pub fn enable_blob_shadows(&mut self, gpu: &Gpu) -> bool {
-        self.renderer.enable_blob_shadows(gpu)
+        self.renderer.enable(gpu, PassId::blobs)
     }
 
-    /// Poses the character, places camera and light and prepares the frame of `shot`.
+    /// Poses the character, places camera and light and prepares the frame of `shot`: the
+    /// camera framed on this pose ([`Self::framing`]), then [`Self::frame_in`].
     pub fn frame(
         &mut self,
         gpu: &Gpu,
         assets: &SceneAssets,
         shot: &Shot,
     ) -> Result<PreparedFrame, String> {
+        let framing = self.framing(assets, shot)?;
+        self.frame_in(gpu, assets, shot, &framing)
+    }
+
+    /// Where `shot` places the character and the camera: posed at the shot's moment, scaled
+    /// to the one character height, standing at the origin, its posed bounds (every vertex
+    /// skinned on the CPU) framed to fill `shot.fill` of the view; the light as the shot says.
+    pub fn framing(&mut self, assets: &SceneAssets, shot: &Shot) -> Result<Framing, String> {
         let model = &assets.character;
-        if self.material.as_ref() != Some(&shot.material) {
-            self.renderer.set_material(gpu, &shot.material);
-            self.material = Some(shot.material.clone());
-        }
-        self.pose.reset(model);
-        if !model.animations.is_empty() {
-            let clip = model.animations.get(shot.clip).ok_or_else(|| {
-                format!(
-                    "{}: clip {} out of range (the model has {})",
-                    model.source,
-                    shot.clip,
-                    model.animations.len()
-                )
-            })?;
-            self.pose
-                .apply_clip(clip, shot.time.clamp(0.0, clip.duration));
-        }
-        self.pose.update_world(model);
+        self.pose_at(assets, shot)?;
         let (lo, hi) = posed_bounds(model, &self.pose)
             .ok_or_else(|| format!("{}: no skinned mesh", model.source))?;
         // Normalise any character to the one character height, standing on the floor at the
@@ -139,6 +159,46 @@ impl StillRenderer {
             light,
             exposure: EXPOSURE,
         };
+        Ok(Framing { world, view })
+    }
+
+    /// Poses the character at `shot`'s moment.
+    fn pose_at(&mut self, assets: &SceneAssets, shot: &Shot) -> Result<(), String> {
+        let model = &assets.character;
+        self.pose.reset(model);
+        if !model.animations.is_empty() {
+            let clip = model.animations.get(shot.clip).ok_or_else(|| {
+                format!(
+                    "{}: clip {} out of range (the model has {})",
+                    model.source,
+                    shot.clip,
+                    model.animations.len()
+                )
+            })?;
+            self.pose
+                .apply_clip(clip, shot.time.clamp(0.0, clip.duration));
+        }
+        self.pose.update_world(model);
+        Ok(())
+    }
+
+    /// Poses the character at `shot`'s moment and prepares its frame placed and seen as
+    /// `framing` says (a camera that stays put while the character moves: what a game's
+    /// frame does).
+    pub fn frame_in(
+        &mut self,
+        gpu: &Gpu,
+        assets: &SceneAssets,
+        shot: &Shot,
+        framing: &Framing,
+    ) -> Result<PreparedFrame, String> {
+        let model = &assets.character;
+        if self.material.as_ref() != Some(&shot.material) {
+            self.renderer.set_material(gpu, &shot.material);
+            self.material = Some(shot.material.clone());
+        }
+        self.pose_at(assets, shot)?;
+        let (w, h) = (self.offscreen.targets.width, self.offscreen.targets.height);
         let draw = DrawSet {
             shading: shot.shading,
             character: true,
@@ -149,10 +209,10 @@ impl StillRenderer {
             subject: Some(SubjectPose {
                 model,
                 pose: &self.pose,
-                world,
+                world: framing.world,
             }),
-            props: Some(&self.props),
-            ..FramePacket::new((w, h), view, draw)
+            props: &self.props,
+            ..FramePacket::new((w, h), framing.view, draw)
         };
         Ok(self.renderer.prepare(gpu, &packet))
     }
@@ -165,7 +225,7 @@ impl StillRenderer {
         shot: &Shot,
     ) -> Result<RgbaImage, String> {
         let frame = self.frame(gpu, assets, shot)?;
-        self.renderer.draw_offscreen(gpu, &self.offscreen, &frame);
+        self.renderer.draw_offscreen(gpu, &self.offscreen, &frame)?;
         Ok(self.offscreen.read(gpu))
     }
 
@@ -177,12 +237,16 @@ impl StillRenderer {
         shot: &Shot,
     ) -> Result<Vec<[f32; 4]>, String> {
         let frame = self.frame(gpu, assets, shot)?;
-        self.renderer.draw_offscreen(gpu, &self.offscreen, &frame);
+        self.renderer.draw_offscreen(gpu, &self.offscreen, &frame)?;
         Ok(self.offscreen.read_f16(gpu))
     }
 
     /// Records `frame` into `encoder` (untimed), into the still's target.
-    pub fn encode(&self, encoder: &mut wgpu::CommandEncoder, frame: &PreparedFrame) {
+    pub fn encode(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        frame: &PreparedFrame,
+    ) -> Result<(), String> {
         self.renderer.encode(
             frame,
             &mut PassCtx {
@@ -191,7 +255,8 @@ impl StillRenderer {
                 output: &self.offscreen.view,
                 timer: None,
             },
-        );
+        )?;
+        Ok(())
     }
 
     /// Renders `shot` with timestamps around its scene passes (the character, and the props
@@ -200,15 +265,17 @@ impl StillRenderer {
         let frame = self.frame(gpu, assets, shot).ok()?;
         let timer = self.timer.as_ref()?;
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
-        self.renderer.encode(
-            &frame,
-            &mut PassCtx {
-                encoder: &mut encoder,
-                targets: &self.offscreen.targets,
-                output: &self.offscreen.view,
-                timer: Some(timer),
-            },
-        );
+        self.renderer
+            .encode(
+                &frame,
+                &mut PassCtx {
+                    encoder: &mut encoder,
+                    targets: &self.offscreen.targets,
+                    output: &self.offscreen.view,
+                    timer: Some(timer),
+                },
+            )
+            .ok()?;
         timer.resolve(&mut encoder);
         gpu.queue.submit([encoder.finish()]);
         timer.read_ms(&gpu.device)

@@ -9,7 +9,9 @@
 //! it. `dermis bench shading` measures every model's error against the path-traced
 //! references and its Mali-G57 cycles per pixel at close-up, and writes the front, richest
 //! first, to `docs/results/governor-front.txt`, which this module embeds: nothing here is
-//! copied by hand. A choice on the front steps down to the front models after it; a
+//! copied by hand. The front weighs the scanned face as well as the probes: a model on the
+//! probes' front that is worse on the face than a cheaper tier below it is left off, so a
+//! step down never makes the face look better. A choice on the front steps down to the front models after it; a
 //! screen-space choice off the front to the one-pass front models; any other to the front's
 //! floor, the front's last tier, a plain BRDF. Every tier's pipeline is built at load by the
 //! renderer, so a tier change creates nothing on the GPU.
@@ -55,7 +57,8 @@ use dermis_engine::shading::ShadingModel;
 pub const MAX_TIERS: usize = 3;
 
 /// The measured accuracy–cost front, richest first, as `dermis bench shading` wrote it
-/// (overall error against Mali-G57 cycles): the tiers a choice steps down to.
+/// (overall error against Mali-G57 cycles, less any model worse on the face than a cheaper
+/// tier): the tiers a choice steps down to.
 const FRONT_FILE: &str = include_str!("../../docs/results/governor-front.txt");
 
 /// [`FRONT_FILE`]'s models (at most [`MAX_TIERS`]; names the registry does not know are

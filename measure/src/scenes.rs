@@ -356,7 +356,9 @@ impl SceneRenderer {
             ..FramePacket::new((PIXELS, PIXELS), view, draw)
         };
         let frame = self.renderer.prepare(gpu, &packet);
-        self.renderer.draw_offscreen(gpu, &self.target, &frame);
+        if let Err(e) = self.renderer.draw_offscreen(gpu, &self.target, &frame) {
+            log::error!("{e}");
+        }
         self.target.read_f16(gpu)
     }
 }

@@ -31,6 +31,10 @@ pub struct AlbedoArgs {
     /// Print JSON.
     #[arg(long)]
     pub json: bool,
+    /// The dense check instead, written to this JSON file: η 1.00–1.60 by 0.01 and A 0.05,
+    /// 0.10, 0.20, …, 0.90 and C(η) − 0.01 (the table's medium only; `--eta` is ignored).
+    #[arg(long, value_name = "F.json")]
+    pub sweep: Option<std::path::PathBuf>,
 }
 
 /// The multi-scatter albedos checked.
@@ -39,6 +43,10 @@ pub fn albedos() -> Vec<f64> {
 }
 
 pub fn run(args: AlbedoArgs) -> Result<(), String> {
+    if let Some(out) = &args.sweep {
+        crate::cmd::args::check_out_file(out, Some("json"))?;
+        return super::albedo_sweep::run(out, args.g, args.photons, args.seed);
+    }
     let threads = dermis_measure::bake::threads();
     let multis = albedos();
     let reachable = |eta: f64| -> Vec<(usize, f64)> {

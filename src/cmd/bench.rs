@@ -23,8 +23,10 @@ pub struct BenchArgs {
 #[derive(clap::Subcommand, Debug)]
 pub enum BenchKind {
     /// Time to first frame, CPU time per frame, each model's GPU time for a close-up
-    /// character pass as a ratio to `ward`, and the cost of blob shadows on that pass with
-    /// the floor (on/off ratio).
+    /// character pass as a ratio to `ward`, the cost of blob shadows on that pass with the
+    /// floor (on/off ratio), and the game's own frames (the showroom's close-up, the runner at
+    /// the follow camera): skin pixels, the penumbra map's passes, each model's whole frame
+    /// as a ratio to `ward`'s and, with `--mali`, its Mali cycles per skin pixel.
     Frame {
         /// Rounds of GPU timing, at least 2 (each round times every model once, in rotating
         /// order, then the blob-shadow models off and on, in alternating order).
@@ -50,6 +52,10 @@ pub enum BenchKind {
         /// this directory (loaded, then saved once every pipeline is built).
         #[arg(long, requires = "first_frame_only")]
         pipeline_cache: Option<PathBuf>,
+        /// Mali cycles (`tools/mali/cycles.sh` JSON of `dermis shaders --spirv`): price each
+        /// model per skin pixel at the game's framings.
+        #[arg(long)]
+        mali: Option<PathBuf>,
     },
     /// The scene's textures loaded and uploaded three ways (block encodings as stored, ETC2
     /// decoded on the CPU, the PNG/JPEG sources decoded): CPU time and GPU bytes of each.
@@ -74,9 +80,24 @@ pub fn run(args: BenchArgs) -> Result<(), String> {
             json,
             first_frame_only,
             pipeline_cache,
+            mali,
         } => match (first_frame_only, pipeline_cache) {
             (true, None) => two_launches(out, json),
-            (first_frame_only, cache) => frame(rounds, frames, out, json, first_frame_only, cache),
+            (first_frame_only, cache) => {
+                let mali = mali
+                    .map(|p| crate::cmd::shaders::read_cycles(&p))
+                    .transpose()?;
+                let opts = FrameOpts {
+                    rounds,
+                    frames,
+                    out,
+                    print_json: json,
+                    first_frame_only,
+                    pipeline_cache: cache,
+                    mali,
+                };
+                frame(opts)
+            }
         },
         BenchKind::Textures(args) => crate::cmd::bench_textures::run(args),
         BenchKind::Shading(args) => crate::cmd::bench_shading::run(*args),
@@ -167,14 +188,27 @@ fn two_launches(out: Option<PathBuf>, print_json: bool) -> Result<(), String> {
     Ok(())
 }
 
-fn frame(
+/// `bench frame`'s options (checked, the Mali cycles read).
+struct FrameOpts {
     rounds: usize,
     frames: usize,
     out: Option<PathBuf>,
     print_json: bool,
     first_frame_only: bool,
     pipeline_cache: Option<PathBuf>,
-) -> Result<(), String> {
+    mali: Option<serde_json::Value>,
+}
+
+fn frame(opts: FrameOpts) -> Result<(), String> {
+    let FrameOpts {
+        rounds,
+        frames,
+        out,
+        print_json,
+        first_frame_only,
+        pipeline_cache,
+        mali,
+    } = opts;
     if let Some(path) = &out {
         check_out_file(path, Some("json"))?;
     }
@@ -285,7 +319,7 @@ fn frame(
     };
     // Steps: close-up, the CPU frames (in eighths), the GPU rounds, the blob shadows'
     // coverage and their rounds.
-    let mut progress = Progress::new("bench frame", (2 + 8 + 2 * rounds) as u64);
+    let mut progress = Progress::new("bench frame", (2 + 8 + 4 * rounds) as u64);
 
     // Close-up: the character alone, zoomed until it covers at least 40 % of the frame.
     let mut close = Shot {
@@ -295,21 +329,25 @@ fn frame(
     let coverage = frame_close_up(&gpu, &mut still, &assets, &mut close, 0.4)?;
     progress.step("close-up framed");
 
-    // CPU per frame: animation + joint palettes + uniforms + command encoding.
+    // CPU per frame, as a game's frame spends it: the pose + joint palettes + the prepared
+    // frame's uniforms and instances + command encoding, the camera framed once (a still's
+    // per-shot framing skins every vertex on the CPU for the pose's exact bounds: not a
+    // frame's work).
     let clip = usize::from(assets.character.animations.len() > 1);
+    let mut shot = Shot {
+        shading: Some(ShadingModel::DEFAULT),
+        props: true,
+        clip,
+        ..close.clone()
+    };
+    let framing = still.framing(&assets, &shot)?;
     let mut cpu_ms = Vec::with_capacity(frames);
     for f in 0..frames {
         let t = Instant::now();
-        let shot = Shot {
-            shading: Some(ShadingModel::DEFAULT),
-            props: true,
-            clip,
-            time: f as f32 / 60.0,
-            ..close.clone()
-        };
-        let frame = still.frame(&gpu, &assets, &shot)?;
+        shot.time = f as f32 / 60.0;
+        let frame = still.frame_in(&gpu, &assets, &shot, &framing)?;
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
-        still.encode(&mut encoder, &frame);
+        still.encode(&mut encoder, &frame)?;
         let cmd = encoder.finish();
         cpu_ms.push(t.elapsed().as_secs_f64() * 1e3);
         gpu.queue.submit([cmd]);
@@ -362,6 +400,20 @@ fn frame(
     } else {
         (None, Vec::new())
     };
+    // The game's own frames at its two framings, every model.
+    let game_frames = if gpu.timestamps {
+        let framings = crate::cmd::bench_distance::measure(
+            &gpu,
+            &assets,
+            (w, h),
+            &ShadingModel::ALL,
+            rounds,
+            || progress.step("game frames"),
+        )?;
+        crate::cmd::bench_distance::report(&framings, &ShadingModel::ALL, mali.as_ref())
+    } else {
+        serde_json::Value::Null
+    };
     progress.finish();
     let name = |m: &Option<ShadingModel>| m.map_or("unlit", |m| m.name());
     let ward_at = models
@@ -408,6 +460,7 @@ fn frame(
         "models": per_model,
         "blob_shadow_pixels": blob_pixels,
         "blob_shadows": blob_shadows,
+        "game_frames": game_frames,
     });
     let text = serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?;
     if let Some(path) = &out {
@@ -420,7 +473,7 @@ fn frame(
     println!("adapter: {}  ({label})", gpu.adapter_name());
     println!("time to first frame: {first_frame_ms:.0} ms ({breakdown_text} ms)");
     println!(
-        "CPU per frame (pose + palettes + encode): p50 {:.3} ms, p95 {:.3} ms over {frames} frames",
+        "CPU per frame (pose + palettes + prepare + encode, the camera framed once): p50 {:.3} ms, p95 {:.3} ms over {frames} frames",
         percentile(&cpu_ms, 0.5),
         percentile(&cpu_ms, 0.95)
     );
@@ -482,5 +535,9 @@ fn frame(
             },
         );
     }
+    print!(
+        "{}",
+        crate::cmd::bench_distance::table(&report["game_frames"])
+    );
     Ok(())
 }

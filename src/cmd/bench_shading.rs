@@ -30,7 +30,7 @@ use glam::{Mat4, Vec3};
 use serde_json::{json, Map, Value};
 
 use crate::cmd::pareto::{self, aggregate, family, SceneScore};
-use crate::cmd::shaders::{mali_cost, read_cycles};
+use crate::cmd::shaders::{mali_cost, read_cycles, PenumbraRun};
 use crate::cmd::stats::{median, ratio_ci};
 
 #[derive(clap::Args, Debug)]
@@ -344,7 +344,7 @@ impl CostScene {
         let frame = self.renderer.prepare(gpu, &packet);
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
         let timer = self.timer.as_ref().filter(|_| timed);
-        self.renderer.encode(
+        let encoded = self.renderer.encode(
             &frame,
             &mut PassCtx {
                 encoder: &mut encoder,
@@ -353,6 +353,9 @@ impl CostScene {
                 timer,
             },
         );
+        if let Err(e) = encoded {
+            log::error!("{e}");
+        }
         if let Some(timer) = timer {
             timer.resolve(&mut encoder);
         } else {
@@ -448,6 +451,7 @@ fn build_report(
         }
     }
     let material = &sets[0].0;
+    let penumbra = PenumbraRun::runner(dermis_engine::shading::edge_spread::reach_mm(material));
     let n = times.len();
     let (ward, unlit) = (&times[0], &times[n - 1]);
     let mut rows = Vec::new();
@@ -466,6 +470,7 @@ fn build_report(
                     rings,
                     subsurface::ANGLES as usize,
                     (COST_SIZE.0 * COST_SIZE.1) as f64,
+                    penumbra,
                 )
             });
             m_json.insert(

@@ -1,6 +1,7 @@
 //! GPU pass timing shared by the benches: the close-up character pass per shading model,
 //! interleaved so slow drift affects every model alike.
 
+use dermis_engine::render::passes::PassId;
 use dermis_engine::render::Gpu;
 use dermis_engine::scene::SceneAssets;
 use dermis_engine::shading::ShadingModel;
@@ -93,7 +94,7 @@ pub fn time_blob_shadows(
     };
     let mut out = vec![[Vec::with_capacity(rounds), Vec::with_capacity(rounds)]; models.len()];
     for on in [false, true] {
-        still.renderer.set_blob_shadows(on);
+        still.renderer.switch(PassId::blobs, on);
         still.time_pass(gpu, assets, &with(ShadingModel::BASELINE));
     }
     for r in 0..rounds {
@@ -101,7 +102,7 @@ pub fn time_blob_shadows(
             let i = (k + r) % models.len();
             for j in 0..2 {
                 let on = (j + k + r) % 2 == 1;
-                still.renderer.set_blob_shadows(on);
+                still.renderer.switch(PassId::blobs, on);
                 out[i][usize::from(on)].push(
                     still
                         .time_pass(gpu, assets, &with(models[i]))
@@ -111,7 +112,7 @@ pub fn time_blob_shadows(
         }
         tick();
     }
-    still.renderer.set_blob_shadows(true);
+    still.renderer.switch(PassId::blobs, true);
     Ok(out)
 }
 
@@ -128,9 +129,9 @@ pub fn blob_shadow_coverage(
         props: true,
         ..shot.clone()
     };
-    still.renderer.set_blob_shadows(false);
+    still.renderer.switch(PassId::blobs, false);
     let off = still.render(gpu, assets, &shot)?;
-    still.renderer.set_blob_shadows(true);
+    still.renderer.switch(PassId::blobs, true);
     let on = still.render(gpu, assets, &shot)?;
     let changed = off
         .pixels

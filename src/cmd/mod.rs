@@ -1,6 +1,8 @@
 pub mod albedo;
+pub mod albedo_sweep;
 pub mod args;
 pub mod bench;
+pub mod bench_distance;
 pub mod bench_effects;
 pub mod bench_face;
 pub mod bench_face_sweep;

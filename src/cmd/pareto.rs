@@ -113,12 +113,14 @@ fn models(report: &Value) -> impl Iterator<Item = &Value> {
     arr(&report["models"])
 }
 
-/// The models on the error–G57-cycles front, richest (most accurate, costliest) first: the
-/// governor's tiers (`governor-front.txt`, embedded by the core). The last tier is always a
-/// plain BRDF (no subsurface transport): the governor's floor, for an unlit or tiny character
-/// whose transport shows nothing and which then needs no LUT, penumbra map or subsurface pass.
+/// The governor's tiers (`governor-front.txt`, embedded by the core), richest (most accurate,
+/// costliest) first: the models on the error–G57-cycles front, less any that is worse on the
+/// scanned face (the report's `face` mean, where it has one) than a cheaper tier kept below
+/// it, so stepping down never makes the face better. The last tier is always a plain BRDF
+/// (no subsurface transport): the governor's floor, for an unlit or tiny character whose
+/// transport shows nothing and which then needs no LUT, penumbra map or subsurface pass.
 /// Where the front dominates every BRDF (a one-pass subsurface model can cost fewer G57 cycles
-/// than the cheapest BRDF), the cheapest BRDF is appended.
+/// than the cheapest BRDF), the cheapest BRDF is the floor below the front.
 pub fn front_models(report: &Value) -> Vec<String> {
     let points = panel_points(report, true).0;
     let plain = |name: &str| {
@@ -126,24 +128,46 @@ pub fn front_models(report: &Value) -> Vec<String> {
             .is_ok_and(|m| !m.effects().subsurface)
     };
     let mut on: Vec<_> = points.iter().filter(|p| p.3).cloned().collect();
-    on.sort_by(|a, b| b.1.total_cmp(&a.1));
+    on.sort_by(|a, b| a.1.total_cmp(&b.1));
+    // Cheapest first: the floor, then the front by cost.
     let mut names: Vec<String> = on.into_iter().map(|p| p.0).collect();
     if !names.iter().any(|n| plain(n)) {
         let floor = points
             .iter()
             .filter(|p| plain(&p.0) && p.1.is_finite())
             .min_by(|a, b| a.1.total_cmp(&b.1));
-        names.extend(floor.map(|p| p.0.clone()));
+        if let Some(f) = floor {
+            names.insert(0, f.0.clone());
+        }
     }
-    names
+    let mut kept: Vec<(String, Option<f64>)> = Vec::new();
+    for name in names {
+        let face = face_mean(report, &name);
+        let no_worse = |below: &(String, Option<f64>)| match (face, below.1) {
+            (Some(f), Some(b)) => f <= b,
+            _ => true,
+        };
+        if kept.iter().all(no_worse) {
+            kept.push((name, face));
+        }
+    }
+    kept.into_iter().rev().map(|k| k.0).collect()
+}
+
+/// `model`'s mean error on the scanned face in `report`, where it has one.
+fn face_mean(report: &Value, model: &str) -> Option<f64> {
+    models(report)
+        .find(|r| r["model"] == json!(model))
+        .and_then(|r| r["face"]["mean"].as_f64())
+        .filter(|f| f.is_finite())
 }
 
 /// `governor-front.txt`: a comment, then [`front_models`] one per line.
 pub fn front_file(report: &Value) -> String {
     let mut out = String::from(
-        "# The measured accuracy–cost front (overall error vs Mali-G57 cycles), richest first:\n\
-         # the governor's tiers. Written by `dermis bench shading --out DIR`; embedded by\n\
-         # game/src/governor.rs.\n",
+        "# The governor's tiers, richest first: the measured accuracy–cost front (overall\n\
+         # error vs Mali-G57 cycles) less any model worse on the scanned face than a cheaper\n\
+         # tier. Written by `dermis bench shading --out DIR`; embedded by game/src/governor.rs.\n",
     );
     for m in front_models(report) {
         out.push_str(&m);
@@ -241,9 +265,12 @@ pub fn markdown(report: &Value) -> String {
         );
     }
     s += &format!(
-        "\nPareto front (overall error vs G57 cycles): {}. Against lavapipe time: {}.\n",
+        "\nPareto front (overall error vs G57 cycles): {}. Against lavapipe time: {}. \
+         The governor's tiers (that front less any model worse on the face than a cheaper \
+         tier below it): {}.\n",
         front_names(report, true),
-        front_names(report, false)
+        front_names(report, false),
+        front_models(report).join(" → ")
     );
     s += &test_materials(report);
     s
@@ -496,6 +523,72 @@ mod tests {
         // On the front already: nothing is appended.
         let plain = json!({"models": [row("ward", 4.7, 2.0), row("preintegrated", 0.08, 3.0)]});
         assert_eq!(front_models(&plain), ["preintegrated", "ward"]);
+    }
+
+    /// The shipped tiers (the front the game embeds): each tier is at least as good on the
+    /// probes and on the scanned face as every cheaper tier below it.
+    #[test]
+    fn no_shipped_tier_is_worse_on_the_face_than_a_cheaper_one() {
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/results");
+        let report: Value = serde_json::from_str(
+            &std::fs::read_to_string(root.join("shading.json")).expect("shading.json"),
+        )
+        .expect("JSON");
+        let tiers = dermis_game::governor::front();
+        assert!(tiers.len() >= 2, "{tiers:?}");
+        let row = |m: &ShadingModel| {
+            models(&report)
+                .find(|r| r["model"] == json!(m.name()))
+                .unwrap_or_else(|| panic!("{m}: no row"))
+        };
+        for (i, rich) in tiers.iter().enumerate() {
+            for cheap in &tiers[i + 1..] {
+                let face = |m| row(m)["face"]["mean"].as_f64().expect("face mean");
+                let overall = |m| row(m)["error"]["overall"].as_f64().expect("overall");
+                assert!(
+                    face(rich) <= face(cheap),
+                    "{rich} (face {}) above {cheap} (face {})",
+                    face(rich),
+                    face(cheap)
+                );
+                assert!(overall(rich) <= overall(cheap), "{rich} above {cheap}");
+            }
+        }
+    }
+
+    /// A model on the probes' front that is worse on the face than a cheaper tier is no tier;
+    /// without face scores the front is the probes' alone.
+    #[test]
+    fn a_tier_worse_on_the_face_than_a_cheaper_one_is_dropped() {
+        let row = |model: &str, err: f64, cycles: f64, face: Option<f64>| {
+            let mut r = json!({"model": model, "error": {"overall": err},
+                   "mali": {"G57": {"per_pixel": cycles, "static": cycles}}});
+            if let Some(f) = face {
+                r["face"] = json!({"mean": f});
+            }
+            r
+        };
+        let with_face = json!({"models": [
+            row("ward", 4.7, 2.9, Some(0.53)), row("oss-stable", 2.8, 4.5, Some(0.99)),
+            row("preintegrated", 0.07, 5.0, Some(0.05))]});
+        assert_eq!(front_models(&with_face), ["preintegrated", "ward"]);
+        // Better on the face than the floor: kept.
+        let better = json!({"models": [
+            row("ward", 4.7, 2.9, Some(0.53)), row("oss-stable", 2.8, 4.5, Some(0.4)),
+            row("preintegrated", 0.07, 5.0, Some(0.05))]});
+        assert_eq!(
+            front_models(&better),
+            ["preintegrated", "oss-stable", "ward"]
+        );
+        let none = json!({"models": [
+            row("ward", 4.7, 2.9, None), row("oss-stable", 2.8, 4.5, None),
+            row("preintegrated", 0.07, 5.0, None)]});
+        assert_eq!(front_models(&none), ["preintegrated", "oss-stable", "ward"]);
+        // A floor appended below a front that dominates it is compared too.
+        let floor = json!({"models": [
+            row("ward", 4.7, 3.3, Some(0.53)), row("oss-stable", 2.8, 2.0, Some(0.99)),
+            row("preintegrated", 0.07, 3.0, Some(0.05))]});
+        assert_eq!(front_models(&floor), ["preintegrated", "ward"]);
     }
 
     #[test]

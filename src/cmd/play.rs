@@ -148,6 +148,7 @@ pub fn run(args: PlayArgs) -> Result<(), String> {
             .run(&mut driver, &gpu, Output::Offscreen(&target))
             .map_err(|s| format!("frame not drawn: {s:?}"))?;
         let (info, stats) = (game.info, game.stats);
+        let frame_uploads = game.prepared.map_or(0, |f| f.uploads);
         if let Some(want) = shoot {
             let dir = args.screenshots.as_ref().expect("checked above");
             let path = dir.join(format!("{}.png", shots[want].0));
@@ -165,7 +166,7 @@ pub fn run(args: PlayArgs) -> Result<(), String> {
             continue;
         }
         cpu_ms.push((times.submitted - times.start).as_secs_f64() * 1e3);
-        uploads.push(gg.last_frame().map_or(0, |f| f.uploads) as f64);
+        uploads.push(frame_uploads as f64);
         let a = times.allocs;
         dermis_allocs.push((a.updated - a.start) as f64);
         wgpu_allocs.push((a.submitted - a.updated) as f64);

@@ -3,11 +3,12 @@
 use std::path::PathBuf;
 
 use dermis_engine::render::pfm::FloatImage;
-use dermis_engine::render::Gpu;
+use dermis_engine::render::{Gpu, PipelineSet, OFFSCREEN_FORMAT};
 use dermis_engine::scene::SceneAssets;
 use dermis_engine::shading::{Material, ShadingModel};
 use dermis_engine::still::{Shot, StillRenderer};
 use glam::Vec3;
+use wgpu::TextureFormat::Rgba16Float;
 
 use crate::cmd::args::{
     check_out_file, parse_index, parse_size, parse_time, parse_vec3, shading_help,
@@ -106,7 +107,9 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
     progress.begin("GPU device and pipelines");
     let gpu = Gpu::headless().map_err(|e| e.to_string())?;
     let (w, h) = args.size;
-    let mut still = StillRenderer::new(&gpu, &assets, w, h)?;
+    // Only this model's pipelines and tables.
+    let set = PipelineSet::only(args.shading);
+    let mut still = StillRenderer::with_pipelines(&gpu, &assets, (w, h, OFFSCREEN_FORMAT), &set)?;
     progress.step("GPU device and pipelines");
     let shot = Shot {
         clip: args.clip,
@@ -120,8 +123,7 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
         still.render(&gpu, &assets, &shot)?.save_png(out)?;
     }
     if let Some(hdr) = &args.hdr {
-        let mut raw =
-            StillRenderer::with_format(&gpu, &assets, w, h, wgpu::TextureFormat::Rgba16Float)?;
+        let mut raw = StillRenderer::with_pipelines(&gpu, &assets, (w, h, Rgba16Float), &set)?;
         let pixels = raw.render_radiance(&gpu, &assets, &shot)?;
         FloatImage::new(w, h, pixels.iter().map(|p| [p[0], p[1], p[2]]).collect())?.save(hdr)?;
     }

@@ -245,12 +245,47 @@ fn extrapolate(mali: &Value, base: &str, gpu: &str, steps: &[(&str, f64)]) -> Op
     out.into_iter().reduce(f64::max)
 }
 
+/// One frame's penumbra passes: the grid's texels and the jump passes after the seed pass.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PenumbraRun {
+    pub texels: f64,
+    pub jumps: usize,
+}
+
+impl PenumbraRun {
+    /// The passes over the game's grid for the game's key light and character (the frustum
+    /// the renderer fits, so the same number of jumps) and a material whose edge spread
+    /// reaches `reach_mm` ([`dermis_engine::shading::edge_spread::reach_mm`]).
+    pub fn runner(reach_mm: f64) -> Self {
+        use dermis_engine::render::{jump_steps, ShadowView, PENUMBRA_BLOCK};
+        use dermis_engine::scene::{key_light, CHARACTER};
+        let size = dermis_engine::render::SHADOW_MAP_SIZE;
+        let (centre, radius) = CHARACTER.sphere_at(glam::Vec3::ZERO);
+        let view = ShadowView::fit(key_light(glam::Vec3::ZERO).position, centre, radius, size);
+        let grid = size / PENUMBRA_BLOCK;
+        let width = view.texel_m * size as f32;
+        Self {
+            texels: (grid * grid) as f64,
+            jumps: jump_steps(grid, width, reach_mm as f32).count(),
+        }
+    }
+}
+
+/// Fragment cycles on `gpu` of one frame's penumbra passes: (seed pass, jump passes).
+pub fn penumbra_cycles(mali: &Value, gpu: &str, run: PenumbraRun) -> Option<(f64, f64)> {
+    let bound = |s: &str| mali["shaders"][s][gpu]["frag"]["bound"].as_f64();
+    Some((
+        run.texels * bound("penumbra_seed")?,
+        run.texels * run.jumps as f64 * bound("penumbra_jump")?,
+    ))
+}
+
 /// Mali fragment cycles per pixel of `model` (`None`: unlit) on `gpu`: Mesa's static figure
 /// (each instruction counted once) and the loop-weighted one: the per-channel light loop × 3,
 /// and for screen-space models the subsurface pass with `rings.0` ring iterations of which
 /// `rings.1` take `angles` samples (the rest are under half a pixel and skip theirs); for
-/// models with the penumbra effect, the penumbra map's passes over their grid
-/// ([`penumbra_grid_cycles`]) spread over the frame's `pixels`.
+/// models with the penumbra effect, the frame's penumbra passes (`penumbra`) spread over
+/// the frame's `pixels` of skin.
 pub fn mali_cost(
     mali: &Value,
     model: Option<ShadingModel>,
@@ -258,6 +293,7 @@ pub fn mali_cost(
     rings: (usize, usize),
     angles: usize,
     pixels: f64,
+    penumbra: PenumbraRun,
 ) -> Option<(f64, f64)> {
     let name = model.map_or("unlit", |m| m.name());
     let bound = |s: &str| mali["shaders"][s][gpu]["frag"]["bound"].as_f64();
@@ -280,27 +316,12 @@ pub fn mali_cost(
         )?;
     }
     if model.is_some_and(|m| m.effects().penumbra) {
-        let grid = penumbra_grid_cycles(mali, gpu)? / pixels.max(1.0);
+        let (seed, jumps) = penumbra_cycles(mali, gpu, penumbra)?;
+        let grid = (seed + jumps) / pixels.max(1.0);
         stat += grid;
         weighted += grid;
     }
     Some((stat, weighted))
-}
-
-/// Fragment cycles of one frame's penumbra passes on `gpu`: the seed pass and the jump
-/// passes over the game's grid, for the game's key light and character (the frustum the
-/// renderer fits, so the same number of jumps).
-pub fn penumbra_grid_cycles(mali: &Value, gpu: &str) -> Option<f64> {
-    use dermis_engine::render::{jump_steps, ShadowView, PENUMBRA_BLOCK};
-    use dermis_engine::scene::{key_light, CHARACTER};
-    let bound = |s: &str| mali["shaders"][s][gpu]["frag"]["bound"].as_f64();
-    let size = dermis_engine::render::SHADOW_MAP_SIZE;
-    let (centre, radius) = CHARACTER.sphere_at(glam::Vec3::ZERO);
-    let view = ShadowView::fit(key_light(glam::Vec3::ZERO).position, centre, radius, size);
-    let grid = size / PENUMBRA_BLOCK;
-    let jumps = jump_steps(grid, view.texel_m * size as f32).count() as f64;
-    let texels = (grid * grid) as f64;
-    Some(texels * (bound("penumbra_seed")? + jumps * bound("penumbra_jump")?))
 }
 
 pub fn run(args: ShadersArgs) -> Result<(), String> {

@@ -249,6 +249,7 @@ pub const ROWS: &[Row] = &[
     row("albedo", "photons", Kind::Count),
     row("albedo", "seed", Kind::Count),
     row("albedo", "json", Kind::Switch),
+    row("albedo", "sweep", Kind::OutFile { ext: Some("json") }),
     row("texturing", "out", Kind::OutDir),
     row("texturing", "photons", Kind::Count),
     row("texturing", "seed", Kind::Count),
@@ -310,6 +311,7 @@ pub const ROWS: &[Row] = &[
     row("bench frame", "out", Kind::OutFile { ext: Some("json") }),
     row("bench frame", "first-frame-only", Kind::Switch),
     row("bench frame", "json", Kind::Switch),
+    row("bench frame", "mali", Kind::InFile),
     with(
         "bench frame",
         "pipeline-cache",

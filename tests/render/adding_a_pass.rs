@@ -6,12 +6,17 @@
 //! the scene needs what it draws for and not otherwise; in a frame that needs it, it runs and
 //! records (its own count in the frame's statistics), in a frame that does not, it records
 //! nothing; and no source outside its module and the registry names its type, so the frame's
-//! walk reaches it through the row alone.
+//! walk reaches it through the row alone. The table is the only place that lists the passes
+//! (no other render file imports a pass's module; no pass imports another's), and the
+//! frame's order, derived from what each pass declares it creates, reads and writes, is a
+//! valid one.
 
+use dermis_engine::render::passes::PassId;
 use std::path::Path;
 
 use dermis_engine::camera::look_at;
-use dermis_engine::render::passes::{NAMES, PASS_COUNT};
+use dermis_engine::render::graph::{self, Stage, Target};
+use dermis_engine::render::passes::{frame_order, stage, ACCESS, NAMES, PASS_COUNT};
 use dermis_engine::render::{Gpu, Offscreen, PipelineSet, RenderStats, Renderer, OFFSCREEN_FORMAT};
 use dermis_engine::scene::{
     key_light, showroom, DrawSet, FramePacket, FrameView, SceneAssets, SubjectPose, EXPOSURE,
@@ -81,6 +86,72 @@ fn every_row_has_its_module_and_only_its_module_names_it() {
     }
 }
 
+#[test]
+fn the_table_alone_lists_the_passes_and_their_declarations_order_the_frame() {
+    // No render file outside the table imports a pass's module (the renderer's public
+    // shader-source re-exports in render/mod.rs aside), and no pass imports another's.
+    let render = root().join("engine/src/render");
+    let mut files = Vec::new();
+    for dir in [render.clone(), render.join("passes")] {
+        for e in std::fs::read_dir(&dir).unwrap() {
+            let p = e.unwrap().path();
+            if p.extension().is_some_and(|x| x == "rs") {
+                files.push(p);
+            }
+        }
+    }
+    for path in &files {
+        let text = std::fs::read_to_string(path).unwrap();
+        let file = path.file_stem().unwrap().to_str().unwrap();
+        let in_passes = path.parent().unwrap().ends_with("passes");
+        if file == "mod" {
+            continue;
+        }
+        for name in NAMES {
+            if in_passes && file == name {
+                continue;
+            }
+            for import in [format!("passes::{name}"), format!("super::{name}::")] {
+                assert!(
+                    !(text.contains(&import) && (in_passes || import.starts_with("passes"))),
+                    "{} imports the {name} pass's module: passes are reached through the table",
+                    path.display()
+                );
+            }
+        }
+    }
+    // The order derived from the declarations is valid, and puts the light's maps first, the
+    // scene next and the output last.
+    let order = frame_order();
+    graph::check(&ACCESS, order).unwrap_or_else(|e| panic!("{e}"));
+    let stages: Vec<Stage> = order.iter().map(|&s| stage(s)).collect();
+    assert!(stages.windows(2).all(|w| w[0] <= w[1]), "{stages:?}");
+    let at = |name: &str| {
+        let slot = NAMES.iter().position(|n| *n == name).unwrap();
+        order.iter().position(|&s| s == slot).unwrap()
+    };
+    for (name, target) in [
+        ("shadow_map", Target::ShadowMap),
+        ("penumbra", Target::PenumbraMap),
+    ] {
+        for (reader, access) in NAMES.iter().zip(ACCESS) {
+            if access.reads.contains(&target) && *reader != name {
+                assert!(at(name) < at(reader), "{name} before {reader}");
+            }
+        }
+    }
+    // Every pass writes something, and every transient target has a creator.
+    for (name, access) in NAMES.iter().zip(ACCESS) {
+        assert!(!access.writes.is_empty(), "{name} writes nothing");
+    }
+    let creates_split = ACCESS.iter().filter(|a| a.creates.contains(&Target::Split));
+    assert_eq!(
+        creates_split.count(),
+        1,
+        "one pass creates the split targets"
+    );
+}
+
 /// A renderer with the whole scene (the character, the props, blob shadows, the UI) for
 /// `set`, and one frame of `model` prepared and drawn at 160×120.
 struct Scene {
@@ -107,21 +178,31 @@ impl Scene {
         let assets = &self.assets;
         r.load_scene(gpu, (&assets.character, &assets.roles), &assets.props)
             .unwrap();
-        r.enable_blob_shadows(gpu);
-        r.enable_ui(gpu);
+        r.enable(gpu, PassId::blobs);
+        r.enable(gpu, PassId::ui);
         r.resize(gpu, (160, 120));
         r
     }
 
-    /// One frame drawing `draw` (a UI of one quad when `draw.ui`); its statistics and what
-    /// each pass decided.
+    /// One frame drawing `draw` (a UI of one quad when `draw.ui`), the whole character in
+    /// view; its statistics and what each pass decided.
     fn frame(&self, r: &mut Renderer, draw: DrawSet) -> (RenderStats, [bool; PASS_COUNT]) {
+        self.frame_from(r, draw, Vec3::new(1.2, 1.5, 3.5), Vec3::new(0.0, 0.9, 0.0))
+    }
+
+    /// The same from `eye`, looking at `at`.
+    fn frame_from(
+        &self,
+        r: &mut Renderer,
+        draw: DrawSet,
+        eye: Vec3,
+        at: Vec3,
+    ) -> (RenderStats, [bool; PASS_COUNT]) {
         let model = &self.assets.character;
         let mut pose = dermis_engine::anim::Pose::new(model);
         pose.update_world(model);
-        let eye = Vec3::new(1.2, 1.5, 3.5);
         let view = FrameView {
-            view_proj: look_at(eye, Vec3::new(0.0, 0.9, 0.0), 0.8, 160.0 / 120.0),
+            view_proj: look_at(eye, at, 0.8, 160.0 / 120.0),
             camera_pos: eye,
             light: key_light(Vec3::ZERO),
             exposure: EXPOSURE,
@@ -137,12 +218,14 @@ impl Scene {
                 pose: &pose,
                 world: Mat4::IDENTITY,
             }),
-            props: Some(&props),
-            ui: Some(ui.vertices()),
+            props: &props,
+            ui: ui.vertices(),
             ..FramePacket::new((160, 120), view, draw)
         };
         let frame = r.prepare(&self.gpu, &packet);
-        let stats = r.draw_offscreen(&self.gpu, &self.target, &frame);
+        let stats = r
+            .draw_offscreen(&self.gpu, &self.target, &frame)
+            .unwrap_or_else(|e| panic!("{e}"));
         (stats, frame.passes.map(|p| p.runs))
     }
 }
@@ -162,7 +245,8 @@ fn every_pass_is_built_where_needed_and_records_when_it_runs() {
     // Every model, so every effect is reachable: every pass is built.
     let mut all = scene.renderer(&PipelineSet::everything());
     assert_eq!(all.passes_built(), [true; PASS_COUNT], "{NAMES:?}");
-    // The penumbra tier and a screen-space tier between them run every pass; a pass that
+    // The penumbra tier close up (the face, 0.4 m away: 3 mm pixels, finer than skin's
+    // diffusion length) and a screen-space tier between them run every pass; a pass that
     // runs records, one that does not records nothing.
     let penumbra = ShadingModel::ALL
         .into_iter()
@@ -173,8 +257,20 @@ fn every_pass_is_built_where_needed_and_records_when_it_runs() {
         .find(|m| m.effects().screen_space)
         .unwrap();
     let mut ran = [false; PASS_COUNT];
+    let slot_of = |name: &str| NAMES.iter().position(|n| *n == name).unwrap();
+    // The whole character in 120 pixels (~3 cm each): the penumbra would change nothing seen.
+    let (_, far) = scene.frame(&mut all, everything(penumbra));
+    assert!(!far[slot_of("penumbra")], "no penumbra map for 3 cm pixels");
+    let face = (Vec3::new(0.1, 1.5, 0.4), Vec3::new(0.0, 1.45, 0.0));
     for model in [penumbra, split] {
-        let (stats, runs) = scene.frame(&mut all, everything(model));
+        let (stats, runs) = if model == penumbra {
+            scene.frame_from(&mut all, everything(model), face.0, face.1)
+        } else {
+            scene.frame(&mut all, everything(model))
+        };
+        if model == penumbra {
+            assert!(runs[slot_of("penumbra")], "the penumbra map close up");
+        }
         for slot in 0..PASS_COUNT {
             assert_eq!(
                 runs[slot],

@@ -5,6 +5,7 @@
 //! shadows off and on.
 
 use crate::common;
+use dermis_engine::render::passes::PassId;
 
 use std::path::Path;
 
@@ -24,7 +25,7 @@ const H: u32 = 180;
 fn blob_rig(model: ShadingModel) -> Rig {
     let mut rig = Rig::new(W, H);
     assert!(
-        rig.gg.renderer.blob_shadows(),
+        rig.gg.renderer.is_on(PassId::blobs),
         "the game enables blob shadows"
     );
     rig.session.settings.set_shading_model(model);
@@ -70,9 +71,9 @@ impl Rig {
 
     /// The prepared frame (without the UI), shadows on or off, the character drawn or not.
     fn shoot(&mut self, shadows: bool, character: bool) -> RgbaImage {
-        self.gg.renderer.set_blob_shadows(shadows);
+        self.gg.renderer.switch(PassId::blobs, shadows);
         let image = self.shoot_frame(character);
-        self.gg.renderer.set_blob_shadows(true);
+        self.gg.renderer.switch(PassId::blobs, true);
         image
     }
 
@@ -153,7 +154,7 @@ fn character_pixels(with: &RgbaImage, without: &RgbaImage) -> Vec<usize> {
 /// itself unchanged. Returns the darkening around the feet.
 fn shadow_darkens_only_the_ground_under_the_runner(model: ShadingModel, split: bool) -> f32 {
     let mut rig = blob_rig(model);
-    assert!(rig.gg.renderer.has_subsurface_pass());
+    assert!(rig.gg.renderer.is_on(PassId::subsurface));
     assert_eq!(model.effects().screen_space, split);
     for _ in 0..5 {
         rig.step();
@@ -264,7 +265,7 @@ fn blob_pipelines_exist_only_when_something_casts() {
         }
     }
     let before = pipelines();
-    assert!(!bare.enable_blob_shadows(&gpu) && !bare.blob_shadows());
+    assert!(!bare.enable(&gpu, PassId::blobs) && !bare.is_on(PassId::blobs));
     assert_eq!(pipelines(), before);
     // The game's scene, with and without the subsurface pass.
     let one_pass = PipelineSet {
@@ -276,10 +277,10 @@ fn blob_pipelines_exist_only_when_something_casts() {
         r.load_scene(&gpu, (&assets.character, &assets.roles), &assets.props)
             .unwrap();
         let before = pipelines();
-        assert!(r.enable_blob_shadows(&gpu) && r.blob_shadows());
+        assert!(r.enable(&gpu, PassId::blobs) && r.is_on(PassId::blobs));
         assert_eq!(pipelines() - before, built, "{set:?}");
         // Enabling again builds nothing more.
-        assert!(r.enable_blob_shadows(&gpu));
+        assert!(r.enable(&gpu, PassId::blobs));
         assert_eq!(pipelines() - before, built);
     }
 }

@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-use dermis_engine::render::{Gpu, Offscreen, RgbaImage, OFFSCREEN_FORMAT};
+use dermis_engine::render::{Gpu, Offscreen, PreparedFrame, RgbaImage, OFFSCREEN_FORMAT};
 use dermis_engine::scene::{FramePacket, FrameView, SceneAssets};
 use dermis_engine::shading::ShadingModel;
 use dermis_engine::ui::Insets;
@@ -19,6 +19,8 @@ pub struct Rig {
     pub session: Session,
     /// A test's own camera for every frame it prepares (`None`: the game's).
     pub camera: Option<FrameView>,
+    /// The frame prepared last.
+    pub frame: Option<PreparedFrame>,
 }
 
 impl Rig {
@@ -43,6 +45,7 @@ impl Rig {
             target,
             session,
             camera: None,
+            frame: None,
         }
     }
 
@@ -82,7 +85,7 @@ impl Rig {
             packet.view = view;
         }
         edit(&mut packet);
-        self.gg.prepare(&self.gpu, &packet);
+        self.frame = Some(self.gg.prepare(&self.gpu, &packet));
     }
 
     /// The frame last updated without the UI, the character drawn or not, read back.
@@ -98,10 +101,11 @@ impl Rig {
     /// Draws the frame prepared last (with the UI it says) and reads it back.
     #[allow(dead_code)] // Not every test binary that shares the rig draws frames.
     pub fn draw(&mut self) -> RgbaImage {
-        let frame = self.gg.last_frame().expect("a frame was prepared");
+        let frame = self.frame.expect("a frame was prepared");
         self.gg
             .renderer
-            .draw_offscreen(&self.gpu, &self.target, frame);
+            .draw_offscreen(&self.gpu, &self.target, &frame)
+            .unwrap_or_else(|e| panic!("{e}"));
         self.target.read(&self.gpu)
     }
 }

@@ -1,9 +1,10 @@
 //! Effects only where the scene calls for them: the game builds exactly the pipelines its
 //! materials and tiers can reach, and the props' shader carries no subsurface code at all.
 
+use dermis_engine::render::passes::PassId;
 use std::path::Path;
 
-use dermis_engine::render::passes::character::standard_keys;
+use dermis_engine::render::standard_keys;
 use dermis_engine::render::{
     Clock, FrameDriver, Gpu, LiveObjects, Offscreen, Output, PipelineSet, OFFSCREEN_FORMAT,
 };
@@ -88,7 +89,7 @@ fn the_game_builds_exactly_the_pipelines_it_can_reach() {
     // light's shadow map's depth-only caster (the character casts) and — because the menu
     // reaches a model with the penumbra effect — the penumbra map's two passes; and for each
     // standard material variant of the character (its cloth), one per target layout.
-    assert!(needed.needs_subsurface_pass() && gg.renderer.has_subsurface_pass());
+    assert!(needed.needs_subsurface_pass() && gg.renderer.is_on(PassId::subsurface));
     assert!(gg.renderer.has_shadow_map());
     let penumbra = needed.models.iter().any(|m| m.effects().penumbra);
     assert!(penumbra);

@@ -12,6 +12,7 @@ mod external;
 mod face;
 mod materials_per_region;
 mod phone_limits;
+mod prepared_frames;
 mod prop_culling;
 mod render_gl;
 mod render_models;

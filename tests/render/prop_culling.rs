@@ -59,13 +59,14 @@ impl Scene {
             ui: false,
         };
         let packet = FramePacket {
-            props: Some(&props),
+            props: &props,
             ..FramePacket::new((W, H), view, draw)
         };
         let frame = self.renderer.prepare(&self.gpu, &packet);
         let stats = self
             .renderer
-            .draw_offscreen(&self.gpu, &self.target, &frame);
+            .draw_offscreen(&self.gpu, &self.target, &frame)
+            .unwrap();
         (stats, self.target.read(&self.gpu))
     }
 }

@@ -9,7 +9,7 @@ use crate::common;
 use common::Rig;
 use dermis_engine::camera::look_at;
 use dermis_engine::render::{Gpu, RgbaImage, SHADOW_MAP_SIZE};
-use dermis_engine::scene::{key_light, FrameView, EXPOSURE};
+use dermis_engine::scene::{key_light, FrameView, SubjectId, EXPOSURE};
 use dermis_engine::shading::ShadingModel;
 use dermis_game::governor::GovernorConfig;
 use dermis_measure::ground_truth::{self as reference, metric, ReferenceSet, Scene};
@@ -295,7 +295,7 @@ fn a_ball_lit_at_grazing_incidence_has_no_penumbra() {
         };
         let frame = renderer.prepare(&gpu, &packet);
         assert_eq!(frame.shadow.drawn, casts);
-        renderer.draw_offscreen(&gpu, &target, &frame);
+        renderer.draw_offscreen(&gpu, &target, &frame).unwrap();
         target.read_f16(&gpu)
     };
     let (cast, free) = (shot(true), shot(false));
@@ -363,9 +363,9 @@ fn the_showroom_close_up_crops_the_shadow_map_to_what_it_sees() {
             exposure: EXPOSURE,
         });
         rig.prepare(|_| {});
-        let crop: ShadowView = rig.gg.last_frame().expect("prepared").shadow;
+        let crop: ShadowView = rig.frame.expect("prepared").shadow;
         if k == 0 {
-            let (lo, hi) = rig.gg.renderer.subject_box().unwrap();
+            let (lo, hi) = rig.gg.renderer.subject_box(SubjectId::CHARACTER).unwrap();
             println!("the posed runner's box: {lo} .. {hi}");
         }
         let fit = ShadowView::fit(light, centre, r, SHADOW_MAP_SIZE);
@@ -376,7 +376,11 @@ fn the_showroom_close_up_crops_the_shadow_map_to_what_it_sees() {
         texels.push((fit.texel_m * 1e3, crop.texel_m * 1e3));
         // Points on a grid of the sphere and of the floor around it, those the camera sees
         // whose segment to the light crosses the runner's box: inside the map.
-        let (lo, hi) = rig.gg.renderer.subject_box().expect("the runner was posed");
+        let (lo, hi) = rig
+            .gg
+            .renderer
+            .subject_box(SubjectId::CHARACTER)
+            .expect("the runner was posed");
         let n = 14;
         let f = |a: usize| (a as f32 + 0.5) / n as f32 * 2.0 - 1.0;
         let body =

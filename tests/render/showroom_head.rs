@@ -181,9 +181,11 @@ fn the_showroom_shows_the_scanned_head_under_its_orbiting_light() {
     let packet = rig
         .session
         .extract(&rig.assets.character, head.as_deref(), false);
-    float_gg.prepare(&rig.gpu, &packet);
-    let frame = float_gg.last_frame().expect("prepared");
-    float_gg.renderer.draw_offscreen(&rig.gpu, &target, frame);
+    let frame = float_gg.prepare(&rig.gpu, &packet);
+    float_gg
+        .renderer
+        .draw_offscreen(&rig.gpu, &target, &frame)
+        .unwrap();
     let radiance = target.read_f16(&rig.gpu);
     let bad = radiance
         .iter()

@@ -94,7 +94,7 @@ fn frame(
         ..FramePacket::new((pixels, pixels), view, draw)
     };
     let prepared = r.prepare(gpu, &packet);
-    r.draw_offscreen(gpu, target, &prepared);
+    r.draw_offscreen(gpu, target, &prepared).unwrap();
     target.read_f16(gpu)
 }
 

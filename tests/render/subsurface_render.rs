@@ -2,6 +2,7 @@
 //! Monte Carlo references (`tools/reference/`), with tolerances set from the references'
 //! own noise, and the rule that the screen-space pass exists only where a model calls for it.
 
+use dermis_engine::render::passes::PassId;
 use dermis_engine::render::{Gpu, LiveObjects, PipelineSet, Renderer};
 use dermis_engine::shading::{Material, ShadingModel};
 use dermis_measure::ground_truth::{self, metric, ReferenceSet, Scene};
@@ -184,7 +185,11 @@ fn the_screen_space_pass_exists_only_where_a_model_calls_for_it() {
         let built = pipelines() - before;
         let (kind, model) = &assets.props[0];
         r.load_prop(&gpu, *kind, model);
-        (built, r.has_subsurface_pass(), pipelines() - before - built)
+        (
+            built,
+            r.is_on(PassId::subsurface),
+            pipelines() - before - built,
+        )
     };
     let local = PipelineSet {
         models: vec![ShadingModel::Ward, ShadingModel::Preintegrated],

@@ -4,6 +4,7 @@
 //! each game screen shows what it says: its labels' glyphs inside their rectangles, its
 //! buttons blue, the background untouched outside the widgets.
 
+use dermis_engine::render::passes::PassId;
 use dermis_engine::render::{Gpu, Offscreen, PipelineSet, RenderStats, Renderer, OFFSCREEN_FORMAT};
 use dermis_engine::scene::{DrawSet, FramePacket, FrameView, Light};
 use dermis_engine::ui::{Insets, Rect, Ui, UiVertex};
@@ -33,7 +34,7 @@ impl UiRig {
         };
         let mut renderer = Renderer::with_pipelines(&gpu, OFFSCREEN_FORMAT, &nothing);
         renderer.set_clear(CLEAR);
-        renderer.enable_ui(&gpu);
+        renderer.enable(&gpu, PassId::ui);
         renderer.resize(&gpu, (width, height));
         let target = Offscreen::new(&gpu, width, height);
         Self {
@@ -43,8 +44,8 @@ impl UiRig {
         }
     }
 
-    /// A frame of the UI alone, handing over `vertices` (`None`: those handed over before).
-    fn draw(&mut self, vertices: Option<&[UiVertex]>) -> (RenderStats, Vec<u8>) {
+    /// A frame of the UI alone, drawing `vertices`.
+    fn draw(&mut self, vertices: &[UiVertex]) -> (RenderStats, Vec<u8>) {
         let size = (self.target.targets.width, self.target.targets.height);
         let view = FrameView {
             view_proj: Mat4::IDENTITY,
@@ -65,7 +66,8 @@ impl UiRig {
         let frame = self.renderer.prepare(&self.gpu, &packet);
         let stats = self
             .renderer
-            .draw_offscreen(&self.gpu, &self.target, &frame);
+            .draw_offscreen(&self.gpu, &self.target, &frame)
+            .unwrap();
         (stats, self.target.read(&self.gpu).pixels)
     }
 }
@@ -108,7 +110,7 @@ fn ui_renders_with_one_draw_call() {
     ui.label([10.0, 60.0], "I", 48.0);
     ui.end();
     assert!(ui.needs_upload());
-    let (stats, px) = rig.draw(Some(ui.vertices()));
+    let (stats, px) = rig.draw(ui.vertices());
     if let Ok(path) = std::env::var("DERMIS_UI_GPU_PNG") {
         image::save_buffer(path, &px, W, H, image::ExtendedColorType::Rgba8).unwrap();
     }
@@ -139,7 +141,7 @@ fn ui_renders_with_one_draw_call() {
         .count();
     assert!(stem > 10, "glyph stem pixels: {stem}");
     // An empty UI draws nothing.
-    let (stats, px) = rig.draw(Some(&[]));
+    let (stats, px) = rig.draw(&[]);
     assert_eq!(stats.draw_calls, 0, "{stats:?}");
     assert!(px.chunks_exact(4).all(|p| p[..3] == [0, 0, 0]));
 }
@@ -170,9 +172,7 @@ fn each_game_screen_shows_what_it_says() {
         ui.begin(SW as f32, SH as f32, 1.0, insets);
         gui.draw(ui, game, &mut settings);
         ui.end();
-        let fresh = ui.needs_upload().then(|| ui.vertices());
-        let (stats, px) = rig.draw(fresh);
-        ui.mark_uploaded();
+        let (stats, px) = rig.draw(ui.vertices());
         assert_eq!(stats.draw_calls, 1, "{name}: {stats:?}");
         if let Ok(dir) = std::env::var("DERMIS_UI_SCREENS") {
             let path = std::path::Path::new(&dir).join(format!("{name}.png"));

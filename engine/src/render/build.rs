@@ -6,16 +6,16 @@
 use super::layouts::Layouts;
 use super::light_maps::{self, LightMaps, SHADOW_MAP_SIZE};
 use super::model_gpu::ModelTable;
-use super::passes::{BuildCtx, Passes};
+use super::passes::{BuildCtx, Passes, PASS_COUNT};
 use super::pipelines::{CharacterPipelines, PipelineSet};
+use super::prepared::per_frame;
 use super::prop_gpu::PropGpu;
-use super::renderer::{Renderer, Wants};
+use super::renderer::Renderer;
 use super::resources::{Resources, Subjects};
 use super::skinned::SkinnedGpu;
 use super::{FrameUniform, Gpu};
 use crate::asset::Model;
-use crate::render::passes::blobs::Casters;
-use crate::render::passes::character::standard_keys;
+use crate::render::material_gpu::standard_keys;
 use crate::scene::PropKind;
 use crate::scene::Roles;
 use crate::shading::ShadingModel;
@@ -50,30 +50,33 @@ fn resources(
     light_maps: Option<LightMaps>,
 ) -> Resources {
     let device = &gpu.device;
-    let frame_buffer = device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("frame"),
-        size: std::mem::size_of::<FrameUniform>() as u64,
-        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
+    let frame_buffers = per_frame(|_| {
+        device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("frame"),
+            size: std::mem::size_of::<FrameUniform>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        })
     });
     let light_defaults = light_maps::Defaults::new(device, &gpu.queue);
-    let frame_group = light_maps::frame_group(
-        device,
-        &layouts,
-        &frame_buffer,
-        light_maps.as_ref(),
-        &light_defaults,
-    );
+    let frame_groups = per_frame(|k| {
+        light_maps::frame_group(
+            device,
+            &layouts,
+            &frame_buffers[k],
+            light_maps.as_ref(),
+            &light_defaults,
+        )
+    });
     Resources {
         layouts,
         sampler,
-        frame_buffer,
-        frame_group,
+        frame_buffers,
+        frame_groups,
         models,
         subjects: Subjects::default(),
         standard: Vec::new(),
         props: Vec::new(),
-        casters: Casters::default(),
         light_maps,
         occluder: None,
         shadow_fit: None,
@@ -137,9 +140,9 @@ impl Renderer {
             set,
             light_maps: Some(&light_maps),
             occluder: false,
-            props: !props.is_empty(),
-            blobs: false,
-            ui: false,
+            character: true,
+            props: PropKind::ALL.map(|k| props.iter().any(|(p, _)| *p == k)),
+            wanted: [false; PASS_COUNT],
             standard: &standard,
         };
         let compile = || {
@@ -169,8 +172,8 @@ impl Renderer {
         let models = ModelTable::new(device, queue, &layouts, &set.models);
         let res = resources(gpu, format, (layouts, sampler), models, Some(light_maps));
         let mut renderer = Self::assemble(res, pipelines, passes, set);
-        for ((kind, model), prop) in props.iter().zip(prop_gpus) {
-            renderer.install_prop(*kind, model, prop);
+        for ((kind, _), prop) in props.iter().zip(prop_gpus) {
+            renderer.install_prop(*kind, prop);
         }
         renderer.install_character(gpu, (character, roles), subject?);
         Ok(renderer)
@@ -189,8 +192,10 @@ impl Renderer {
             passes,
             pipelines,
             set: set.clone(),
-            wants: Wants::default(),
+            wanted: [false; PASS_COUNT],
+            off: [false; PASS_COUNT],
             warned_size: false,
+            prepared: 0,
         };
         renderer.receive_pipelines(None, false);
         renderer

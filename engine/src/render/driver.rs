@@ -1,8 +1,10 @@
-//! One frame driver for every shell, in the shape of wgpu's examples `framework.rs`: the shell
-//! owns its window and event loop (or none), the app is a [`FrameWork`], and
-//! [`FrameDriver::frame`] runs one frame of it — resize (to the output's size) → dt → update
-//! → upload → encode → submit → present — into a window surface ([`SurfaceTarget`])
-//! or an [`Offscreen`] target, and says when each step ended ([`FrameTimes`]).
+//! Frame helpers every shell calls (the shell owns its window and event loop, or none, and
+//! the app's frame is straight-line code between them): [`FrameDriver::begin`] acquires the
+//! output (a window surface's image, [`SurfaceTarget`], or an [`Offscreen`] target), waits
+//! for back-pressure, works out `dt` and opens the frame's encoder; the app updates,
+//! extracts, prepares and encodes into [`Frame::encoder`]; [`FrameDriver::finish`] submits,
+//! presents and says when each step ended ([`FrameTimes`]). The driver calls nothing of the
+//! app's.
 //!
 //! Options the shells differ in, all here: the clock ([`Clock`]: the wall clock, or a fixed
 //! step for reproducible headless runs), swapchain-like back-pressure for offscreen targets
@@ -15,7 +17,7 @@ use std::collections::VecDeque;
 use std::time::Instant;
 
 use super::offscreen::Offscreen;
-use super::prepared::RenderStats;
+use super::prepared::{PassCtx, RenderStats};
 use super::surface::{FrameStatus, SurfaceTarget};
 use super::targets::Targets;
 use super::timer::TimerRing;
@@ -29,29 +31,56 @@ pub struct FrameOutput<'a> {
     pub texture: &'a wgpu::Texture,
 }
 
-/// What a frame driver drives: the app's per-frame work.
-pub trait FrameWork {
-    /// The output is `width` × `height` (called before every frame's update): make what
-    /// depends on the size when it changed.
-    fn resize(&mut self, gpu: &Gpu, width: u32, height: u32);
-    /// CPU work: advance by `dt` seconds, for an output of `width` × `height`.
-    fn update(&mut self, dt: f64, width: u32, height: u32);
-    /// This frame's buffer writes.
-    fn upload(&mut self, gpu: &Gpu);
-    /// Records the frame's passes into `encoder`.
-    fn encode(
-        &mut self,
-        encoder: &mut wgpu::CommandEncoder,
-        output: &FrameOutput<'_>,
-    ) -> RenderStats;
-}
-
 /// The target of one frame.
 pub enum Output<'a> {
     /// A window surface: acquired, drawn, presented.
     Surface(&'a mut SurfaceTarget),
     /// An offscreen target: drawn and submitted (nothing to present).
     Offscreen(&'a Offscreen),
+}
+
+impl Output<'_> {
+    /// The MSAA colour and depth targets of the output's size.
+    pub fn targets(&self) -> &Targets {
+        match self {
+            Output::Surface(s) => &s.targets,
+            Output::Offscreen(o) => &o.targets,
+        }
+    }
+}
+
+/// A frame begun by [`FrameDriver::begin`], handed back to [`FrameDriver::finish`]: its
+/// `dt`, its size, the encoder its passes record into and the image they draw.
+pub struct Frame {
+    /// Index of this frame among those the driver drew (from 0).
+    pub index: u64,
+    pub dt: f64,
+    /// The output's size in pixels.
+    pub size: (u32, u32),
+    pub encoder: wgpu::CommandEncoder,
+    /// The image drawn (a swapchain image or the offscreen texture).
+    pub view: wgpu::TextureView,
+    /// The texture `view` shows, for copies.
+    pub texture: wgpu::Texture,
+    image: Option<wgpu::SurfaceTexture>,
+    status: FrameStatus,
+    start: Instant,
+    updated: Instant,
+    allocs: Allocs,
+    timer_slot: Option<usize>,
+}
+
+impl Frame {
+    /// The pass context the frame's passes record into (untimed passes: the driver's timer
+    /// brackets the whole frame).
+    pub fn pass_ctx<'a>(&'a mut self, output: &'a Output<'_>) -> PassCtx<'a> {
+        PassCtx {
+            encoder: &mut self.encoder,
+            targets: output.targets(),
+            output: &self.view,
+            timer: None,
+        }
+    }
 }
 
 /// Where a frame's `dt` comes from.
@@ -73,8 +102,8 @@ impl Clock {
     };
 }
 
-/// Heap allocation counts (from the driver's counter) when each step ended; all zero
-/// without a counter.
+/// Heap allocation counts (from the driver's counter) when each step ended (`start`: once
+/// the frame's encoder was opened); all zero without a counter.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Allocs {
     pub start: u64,
@@ -129,7 +158,7 @@ impl FrameTimes {
     }
 }
 
-/// Runs frames of a [`FrameWork`] (see the module docs).
+/// The helpers a shell runs its frames with (see the module docs).
 pub struct FrameDriver {
     pub clock: Clock,
     /// Offscreen: at most this many frames queued on the GPU (the wait is not part of the
@@ -232,98 +261,111 @@ impl FrameDriver {
         dt
     }
 
-    /// Runs one frame of `work` into `output`: `Err` with the surface's status when there
-    /// is no image to draw this time.
-    pub fn frame(
-        &mut self,
-        gpu: &Gpu,
-        output: Output<'_>,
-        work: &mut impl FrameWork,
-    ) -> Result<FrameTimes, FrameStatus> {
+    /// Begins a frame into `output`: acquires its image (a surface; `Err` with the surface's
+    /// status when there is none this time), waits for back-pressure, works out `dt` and
+    /// opens the frame's encoder (with the GPU timer's start written when frames are timed).
+    pub fn begin(&mut self, gpu: &Gpu, output: &mut Output<'_>) -> Result<Frame, FrameStatus> {
         self.harvested.clear();
-        match output {
-            Output::Offscreen(o) => {
-                self.back_pressure(gpu);
-                let out = FrameOutput {
-                    targets: &o.targets,
-                    view: &o.view,
-                    texture: &o.texture,
-                };
-                Ok(self.run(gpu, work, &out, FrameStatus::Presented))
-            }
+        let (image, status, view, texture) = match output {
+            Output::Offscreen(o) => (
+                None,
+                FrameStatus::Presented,
+                o.view.clone(),
+                o.texture.clone(),
+            ),
             Output::Surface(s) => {
-                let (frame, status) = s.acquire(gpu)?;
-                self.back_pressure(gpu);
-                let view = frame
+                let (image, status) = s.acquire(gpu)?;
+                let view = image
                     .texture
                     .create_view(&wgpu::TextureViewDescriptor::default());
-                let out = FrameOutput {
-                    targets: &s.targets,
-                    view: &view,
-                    texture: &frame.texture,
-                };
-                let mut times = self.run(gpu, work, &out, status);
-                drop(view);
-                s.present(gpu, frame, status);
-                times.presented = Instant::now();
-                Ok(times)
+                let texture = image.texture.clone();
+                (Some(image), status, view, texture)
             }
-        }
-    }
-
-    /// Waits until fewer than [`Self::max_in_flight`] frames are queued on the GPU.
-    fn back_pressure(&mut self, gpu: &Gpu) {
-        let Some(max) = self.max_in_flight else {
-            return;
         };
-        while self.in_flight.len() >= max.max(1) {
-            if let Some(idx) = self.in_flight.pop_front() {
-                let _ = gpu.device.poll(wgpu::PollType::Wait {
-                    submission_index: Some(idx),
-                    timeout: None,
-                });
-            }
-        }
-    }
-
-    fn run(
-        &mut self,
-        gpu: &Gpu,
-        work: &mut impl FrameWork,
-        out: &FrameOutput<'_>,
-        status: FrameStatus,
-    ) -> FrameTimes {
-        let (width, height) = (out.targets.width, out.targets.height);
-        work.resize(gpu, width, height);
+        self.back_pressure(gpu);
+        let targets = output.targets();
+        let size = (targets.width, targets.height);
         let start = Instant::now();
         let dt = self.dt(start);
-        let a_start = self.count();
-        work.update(dt, width, height);
-        let updated = Instant::now();
-        let a_updated = self.count();
-        work.upload(gpu);
         let mut encoder = gpu
             .device
             .create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
-        let frame = self.frames as usize;
-        let slot = self.timer.as_mut().and_then(|r| r.begin(frame));
-        if let (Some(r), Some(s)) = (&self.timer, slot) {
+        let index = self.frames as usize;
+        let timer_slot = self.timer.as_mut().and_then(|r| r.begin(index));
+        if let (Some(r), Some(s)) = (&self.timer, timer_slot) {
             r.start(&mut encoder, s);
         }
-        let stats = work.encode(&mut encoder, out);
+        // Counted from here: the app's update is measured alone.
+        let allocs = Allocs {
+            start: self.count(),
+            ..Allocs::default()
+        };
+        Ok(Frame {
+            index: self.frames,
+            dt,
+            size,
+            encoder,
+            view,
+            texture,
+            image,
+            status,
+            start,
+            updated: start,
+            allocs,
+            timer_slot,
+        })
+    }
+
+    /// Marks the end of the frame's update (CPU work before its GPU side).
+    pub fn updated(&self, frame: &mut Frame) {
+        frame.updated = Instant::now();
+        frame.allocs.updated = self.count();
+    }
+
+    /// Ends `frame`: the GPU timer's end, the submit, the present (a surface), the GPU times
+    /// read back; `stats` is what its encode recorded.
+    pub fn finish(
+        &mut self,
+        gpu: &Gpu,
+        frame: Frame,
+        output: &mut Output<'_>,
+        stats: RenderStats,
+    ) -> FrameTimes {
+        let Frame {
+            index,
+            dt,
+            size: (width, height),
+            mut encoder,
+            view,
+            image,
+            status,
+            start,
+            updated,
+            allocs,
+            timer_slot: slot,
+            ..
+        } = frame;
         if let (Some(r), Some(s)) = (&self.timer, slot) {
             r.end(&mut encoder, s);
         }
         let commands = encoder.finish();
         let encoded = Instant::now();
-        let index = gpu.queue.submit([commands]);
+        let submission = gpu.queue.submit([commands]);
         let submitted = Instant::now();
         let a_submitted = self.count();
         if let (Some(r), Some(s)) = (&self.timer, slot) {
             r.submitted(s);
         }
+        drop(view);
+        let presented = match (output, image) {
+            (Output::Surface(s), Some(image)) => {
+                s.present(gpu, image, status);
+                Instant::now()
+            }
+            _ => submitted,
+        };
         if self.max_in_flight.is_some() {
-            self.in_flight.push_back(index);
+            self.in_flight.push_back(submission);
         }
         if self.sync {
             gpu.wait();
@@ -346,7 +388,7 @@ impl FrameDriver {
         }
         self.frames += 1;
         FrameTimes {
-            frame: frame as u64,
+            frame: index,
             dt,
             width,
             height,
@@ -354,16 +396,30 @@ impl FrameDriver {
             updated,
             encoded,
             submitted,
-            presented: submitted,
+            presented,
             allocs: Allocs {
-                start: a_start,
-                updated: a_updated,
                 submitted: a_submitted,
                 done: self.count(),
+                ..allocs
             },
             stats,
             timer_slot: slot,
             status,
+        }
+    }
+
+    /// Waits until fewer than [`Self::max_in_flight`] frames are queued on the GPU.
+    fn back_pressure(&mut self, gpu: &Gpu) {
+        let Some(max) = self.max_in_flight else {
+            return;
+        };
+        while self.in_flight.len() >= max.max(1) {
+            if let Some(idx) = self.in_flight.pop_front() {
+                let _ = gpu.device.poll(wgpu::PollType::Wait {
+                    submission_index: Some(idx),
+                    timeout: None,
+                });
+            }
         }
     }
 

@@ -9,13 +9,15 @@
 use wgpu::util::DeviceExt;
 
 use super::layouts::Layouts;
-use super::passes::penumbra;
+use crate::shader::uniforms::PENUMBRA_BLOCK;
 
 /// Texels per side of the game's shadow map.
 pub const SHADOW_MAP_SIZE: u32 = 1024;
 pub const SHADOW_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+/// The penumbra grid's texture format: seed uv, depth, valid.
+pub const PENUMBRA_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 
-/// The penumbra map's ping-pong grid (a texel per [`penumbra::BLOCK`]² map texels); the
+/// The penumbra map's ping-pong grid (a texel per [`PENUMBRA_BLOCK`]² map texels); the
 /// finished map is always in `targets[0]`.
 pub struct PenumbraGrid {
     pub size: u32,
@@ -38,7 +40,7 @@ impl LightMaps {
     pub fn new(device: &wgpu::Device, size: u32, penumbra: bool) -> Self {
         let size = size.max(1);
         let texture = depth_texture(device, size, "shadow map");
-        let grid = (size / penumbra::BLOCK).max(1);
+        let grid = (size / PENUMBRA_BLOCK).max(1);
         Self {
             size,
             shadow: texture.create_view(&Default::default()),
@@ -185,7 +187,7 @@ pub fn grid_texture(device: &wgpu::Device, size: u32, label: &str) -> wgpu::Text
             mip_level_count: 1,
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,
-            format: penumbra::FORMAT,
+            format: PENUMBRA_FORMAT,
             usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
             view_formats: &[],
         })

@@ -8,8 +8,9 @@
 use super::layouts::Layouts;
 use super::texture;
 use crate::asset::{AlphaMode, Material, Model};
-use crate::scene::Role;
+use crate::scene::{Role, Roles};
 use crate::shader::uniforms::MaterialUniform;
+use crate::shader::{compose, ShaderDefs};
 
 impl MaterialUniform {
     /// The constants of `material` drawn as `role`; `None`: a primitive without a material
@@ -168,4 +169,42 @@ impl MaterialGpu {
             normal_mapped: normal.is_some_and(|i| i < t.views.len()),
         }
     }
+}
+
+/// A standard material's pipeline: its variant and whether it has a normal map.
+pub type StandardKey = (Variant, bool);
+
+/// The standard pipelines `model` drawn as `roles` needs.
+pub fn standard_keys(model: &Model, roles: &Roles) -> Vec<StandardKey> {
+    let mut keys: Vec<StandardKey> = model
+        .meshes
+        .iter()
+        .flat_map(|m| &m.primitives)
+        .filter(|p| roles.role(p.material) == Role::Standard)
+        .map(|p| {
+            let material = p.material.and_then(|i| model.materials.get(i));
+            let mapped = material.and_then(|m| m.normal_texture).is_some();
+            (Variant::of(material), mapped)
+        })
+        .collect();
+    keys.sort();
+    keys.dedup();
+    keys
+}
+
+/// The composed WGSL of a standard part's pipeline.
+pub fn standard_source((variant, mapped): StandardKey, split: bool) -> String {
+    let mut defs = ShaderDefs::new().flag("STANDARD");
+    for (on, flag) in [
+        (mapped, "NORMAL_MAP"),
+        (variant.mask, "ALPHA_MASK"),
+        (variant.blend, "ALPHA_BLEND"),
+        (variant.double_sided, "DOUBLE_SIDED"),
+        (split, "SCREEN_SPACE"),
+    ] {
+        if on {
+            defs = defs.flag(flag);
+        }
+    }
+    compose("character", &defs).expect("built-in shaders compose (checked by tests)")
 }

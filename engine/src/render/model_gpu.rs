@@ -33,6 +33,9 @@ pub struct ModelTable {
     models: Vec<ModelGpu>,
     unlit: wgpu::BindGroup,
     unlit_pipeline: Option<wgpu::RenderPipeline>,
+    /// The material's longest diffusion length (mm, f32 bits; `edge_spread::diffusion_length_mm`):
+    /// how far its shadows bleed, for the passes that filter them.
+    diffusion_mm: std::sync::atomic::AtomicU32,
 }
 
 impl ModelTable {
@@ -112,6 +115,9 @@ impl ModelTable {
             models,
             unlit,
             unlit_pipeline: None,
+            diffusion_mm: (crate::shading::edge_spread::SPAN_MM as f32)
+                .to_bits()
+                .into(),
         }
     }
 
@@ -129,6 +135,9 @@ impl ModelTable {
     /// `background` is the clear colour the subsurface pass keeps where nothing was drawn.
     pub fn set_material(&self, queue: &wgpu::Queue, material: &Material, background: wgpu::Color) {
         let bg = [background.r, background.g, background.b, background.a].map(|c| c as f32);
+        let l = crate::shading::edge_spread::diffusion_length_mm(material) as f32;
+        self.diffusion_mm
+            .store(l.to_bits(), std::sync::atomic::Ordering::Relaxed);
         for m in &self.models {
             let params = m.model.params(material);
             queue.write_buffer(&m.params, 0, bytemuck::bytes_of(&params));
@@ -139,6 +148,12 @@ impl ModelTable {
                 queue.write_buffer(buffer, 0, bytemuck::bytes_of(&kernel.pack(ANGLES, bg)));
             }
         }
+    }
+
+    /// The current material's longest diffusion length (mm): see
+    /// [`crate::shading::edge_spread::diffusion_length_mm`].
+    pub fn diffusion_mm(&self) -> f32 {
+        f32::from_bits(self.diffusion_mm.load(std::sync::atomic::Ordering::Relaxed))
     }
 
     /// The bind group of `model`'s constants (`None`: the unlit baseline's); `None` for a

@@ -11,7 +11,7 @@ use std::sync::mpsc;
 use super::layouts::Layouts;
 use super::mesh::vertex_layout;
 use super::model_gpu::{ModelTable, PipelineKey};
-use super::passes::subsurface::SPLIT_FORMAT;
+use super::targets::scene_targets;
 use super::targets::{depth_state, multisample, MSAA_SAMPLES};
 use crate::shader::{compose, ShaderDefs};
 use crate::shading::ShadingModel;
@@ -79,6 +79,14 @@ impl PipelineSet {
         Self {
             models: ShadingModel::ALL.to_vec(),
             unlit: true,
+        }
+    }
+
+    /// One model's pipelines (a still of that model), no unlit baseline.
+    pub fn only(model: ShadingModel) -> Self {
+        Self {
+            models: vec![model],
+            unlit: false,
         }
     }
 
@@ -212,25 +220,15 @@ impl CharacterPipelines {
     }
 }
 
-/// The colour targets of a pipeline: the output format, or the three linear targets of a
-/// frame with the subsurface pass.
+/// The colour targets of an opaque pipeline drawing the scene: the output format, or the
+/// split targets of a frame with the subsurface pass.
 pub fn targets(format: wgpu::TextureFormat, split: bool) -> Vec<Option<wgpu::ColorTargetState>> {
-    let target = |format| {
-        Some(wgpu::ColorTargetState {
-            format,
-            blend: None,
-            write_mask: wgpu::ColorWrites::ALL,
-        })
+    let all = wgpu::ColorTargetState {
+        format,
+        blend: None,
+        write_mask: wgpu::ColorWrites::ALL,
     };
-    if split {
-        vec![
-            target(SPLIT_FORMAT),
-            target(SPLIT_FORMAT),
-            target(SPLIT_FORMAT),
-        ]
-    } else {
-        vec![target(format)]
-    }
+    scene_targets(format, split, all.clone(), all)
 }
 
 impl CharacterPipelines {

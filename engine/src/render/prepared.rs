@@ -9,28 +9,51 @@ use super::timer::PassTimer;
 use super::FrameUniform;
 use crate::scene::{DrawSet, FrameView, PropKind};
 use crate::shading::ShadingModel;
+use glam::Mat4;
+
+/// How many prepared frames may wait to be encoded: every buffer `Renderer::prepare` writes
+/// (the frame uniform, the subject's joint palettes, the passes' per-frame constants and
+/// instances, the UI's vertices) has this many copies, made at load and used in turn, so a
+/// frame encodes what was prepared for it while later ones are prepared, and no GPU object
+/// is made per frame. A frame prepared this many frames before the latest is stale:
+/// `Renderer::encode` refuses it. (Submit a frame's commands before preparing this many
+/// more: the queue applies its buffer writes at the next submit.)
+pub const FRAMES_PREPARED: usize = 2;
+
+/// One value per prepared frame's copy (see [`FRAMES_PREPARED`]).
+pub fn per_frame<T>(f: impl FnMut(usize) -> T) -> [T; FRAMES_PREPARED] {
+    std::array::from_fn(f)
+}
 
 /// What one pass does in a frame, decided when the frame is prepared.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct PassFrame {
     /// Whether the pass records anything this frame.
     pub runs: bool,
-    /// A count the pass chose for this frame (the penumbra map's jump passes); 0 for most.
+    /// A count the pass chose for this frame (the penumbra map's jump passes, the blobs
+    /// staged, the UI's vertices); 0 for most.
     pub steps: u32,
 }
 
-/// The subject drawn this frame and the shading model its skin is drawn with.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// The subject drawn this frame, where, and the shading model its skin is drawn with.
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SubjectDraw {
-    /// Its renderer slot (0: the character).
+    /// Where the renderer keeps its GPU side (found from the packet's scene id).
     pub slot: usize,
     /// Its skin's shading model; `None`: the unlit baseline.
     pub shading: Option<ShadingModel>,
+    /// Its placement in the world this frame.
+    pub world: Mat4,
 }
 
 /// Everything the passes need to record one frame, worked out once by `Renderer::prepare`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PreparedFrame {
+    /// Its number among the frames its renderer prepared (from 0).
+    pub seq: u64,
+    /// Which copy of the per-frame buffers it was written into (`seq` mod
+    /// [`FRAMES_PREPARED`]).
+    pub copy: usize,
     /// The target's size in pixels.
     pub size: (u32, u32),
     pub view: FrameView,

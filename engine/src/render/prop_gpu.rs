@@ -23,6 +23,8 @@ pub struct PropGpu {
     pub triangles: u32,
     /// The model's bounding sphere (centre, radius) in its own space, for culling.
     pub bound: (Vec3, f32),
+    /// Its footprint on the ground (`None`: no geometry).
+    pub footprint: Option<Footprint>,
 }
 
 /// Instances of one kind a frame may draw.
@@ -71,6 +73,7 @@ impl PropGpu {
             parts,
             triangles,
             bound: bounding_sphere(lo, hi),
+            footprint: Footprint::of(model),
         }
     }
 
@@ -130,4 +133,50 @@ fn bake(prim: &Primitive, world: Mat4) -> Primitive {
         v.tangent = t.normalize_or_zero().extend(v.tangent[3]).to_array();
     }
     out
+}
+
+/// A prop model's footprint on the ground, in model space.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Footprint {
+    /// Centre (x, z) and half extents (x, z) of its bounds seen from above (m).
+    pub centre: [f32; 2],
+    pub half: [f32; 2],
+    /// Its lowest point (m).
+    pub min_y: f32,
+}
+
+impl Footprint {
+    /// The bounds of `model`'s meshes in its rest pose, seen from above; `None` without
+    /// geometry.
+    pub fn of(model: &Model) -> Option<Self> {
+        let mut lo = Vec3::splat(f32::INFINITY);
+        let mut hi = Vec3::splat(f32::NEG_INFINITY);
+        let mut stack: Vec<(usize, Mat4)> =
+            model.roots.iter().map(|&r| (r, Mat4::IDENTITY)).collect();
+        while let Some((n, parent)) = stack.pop() {
+            let node = &model.nodes[n];
+            let world = parent * node.local.matrix();
+            if let Some(mesh) = node.mesh {
+                for prim in &model.meshes[mesh].primitives {
+                    let (a, b) = (prim.bounds.min, prim.bounds.max);
+                    for i in 0..8 {
+                        let corner = Vec3::new(
+                            if i & 1 == 0 { a.x } else { b.x },
+                            if i & 2 == 0 { a.y } else { b.y },
+                            if i & 4 == 0 { a.z } else { b.z },
+                        );
+                        let p = world.transform_point3(corner);
+                        lo = lo.min(p);
+                        hi = hi.max(p);
+                    }
+                }
+            }
+            stack.extend(node.children.iter().map(|&c| (c, world)));
+        }
+        (lo.x <= hi.x).then_some(Self {
+            centre: [(lo.x + hi.x) * 0.5, (lo.z + hi.z) * 0.5],
+            half: [(hi.x - lo.x) * 0.5, (hi.z - lo.z) * 0.5],
+            min_y: lo.y,
+        })
+    }
 }

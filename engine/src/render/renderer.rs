@@ -10,32 +10,25 @@
 use glam::Vec3;
 
 use super::light_maps::{LightMaps, Occluder, SHADOW_MAP_SIZE};
+use super::material_gpu::standard_keys;
 use super::model_gpu::PipelineKey;
 use super::offscreen::Offscreen;
-use super::passes::character::standard_keys;
 use super::passes::resolve::{self, Timed};
-use super::passes::subsurface::SplitTargets;
-use super::passes::{BuildCtx, Passes, Stage};
+use super::passes::{BuildCtx, PassId, Passes, Stage, Target, PASS_COUNT};
 use super::pipelines::{CharacterPipelines, PipelineSet};
-use super::prepared::{PassCtx, PreparedFrame, RenderStats, SubjectDraw};
+use super::prepared::{PassCtx, PreparedFrame, RenderStats, SubjectDraw, FRAMES_PREPARED};
 use super::prop_gpu::PropGpu;
 use super::resources::{Resources, Subject};
 use super::shadow_view::ShadowView;
 use super::skinned::SkinnedGpu;
+use super::targets::SplitTargets;
 use super::{FrameUniform, Gpu, OutputMode};
 use crate::asset::Model;
-use crate::scene::{FramePacket, PropKind, Roles, CHARACTER};
+use crate::scene::{FramePacket, PropKind, Roles, SubjectId, CHARACTER};
 use crate::shading::{Material, ShadingModel};
 
 /// How much a pose may reach beyond the bind pose's bounding sphere (arms, a jump's tuck).
 const POSE_MARGIN: f32 = 1.25;
-
-/// What the renderer was asked to draw besides the scene's own passes.
-#[derive(Clone, Copy, Debug, Default)]
-pub(super) struct Wants {
-    pub blobs: bool,
-    pub ui: bool,
-}
 
 pub struct Renderer {
     pub(super) res: Resources,
@@ -43,9 +36,14 @@ pub struct Renderer {
     pub(super) pipelines: CharacterPipelines,
     /// The shading models the scene can reach (and the unlit baseline, for benches).
     pub(super) set: PipelineSet,
-    pub(super) wants: Wants,
+    /// The optional passes asked for ([`Self::enable`]), table order.
+    pub(super) wanted: [bool; PASS_COUNT],
+    /// Passes switched off ([`Self::switch`]), table order.
+    pub(super) off: [bool; PASS_COUNT],
     /// A frame asked for a size the renderer was not resized to (logged once).
     pub(super) warned_size: bool,
+    /// Frames prepared so far (the next one's `seq`).
+    pub(super) prepared: u64,
 }
 
 /// What the passes are built from, for the renderer's resources now.
@@ -53,7 +51,7 @@ pub(super) fn build_ctx<'a>(
     gpu: &'a Gpu,
     res: &'a Resources,
     set: &'a PipelineSet,
-    wants: Wants,
+    wanted: [bool; PASS_COUNT],
 ) -> BuildCtx<'a> {
     BuildCtx {
         device: &gpu.device,
@@ -64,9 +62,9 @@ pub(super) fn build_ctx<'a>(
         set,
         light_maps: res.light_maps.as_ref(),
         occluder: res.occluder.is_some(),
-        props: !res.props.is_empty(),
-        blobs: wants.blobs && res.casters.any(),
-        ui: wants.ui,
+        character: res.subjects.iter().next().is_some(),
+        props: PropKind::ALL.map(|k| res.props.iter().any(|p| p.kind == k)),
+        wanted,
         standard: &res.standard,
     }
 }
@@ -89,12 +87,12 @@ fn model_sphere(model: &Model) -> Option<(Vec3, f32)> {
 impl Renderer {
     // ---- the frame -------------------------------------------------------------------
 
-    /// Makes the targets that depend on the frame's size (the subsurface pass's), where the
-    /// scene needs any; call when the output's size changes, before preparing a frame of it.
+    /// Makes the transient targets the built passes create (the frame graph's) at the
+    /// frame's size; call when the output's size changes, before preparing a frame of it.
     pub fn resize(&mut self, gpu: &Gpu, (width, height): (u32, u32)) {
         let size = (width.max(1), height.max(1));
         let sized = self.res.split.as_ref().map(|t| t.size);
-        if !self.set.needs_subsurface_pass() || sized == Some(size) {
+        if !self.passes.creates(Target::Split) || sized == Some(size) {
             return;
         }
         self.res.split = Some(SplitTargets::new(&gpu.device, size));
@@ -105,25 +103,32 @@ impl Renderer {
 
     /// Prepares the frame `packet` describes: installs the pipelines built so far (waiting
     /// for the one it draws, or for all of them when the packet is `settled`), poses the
-    /// subject, fits the shadow map's frustum, lets every pass decide whether it runs and
-    /// write its constants, and writes the frame uniform.
+    /// subject the packet names, fits the shadow map's frustum, lets every pass decide
+    /// whether it runs and write its constants, and writes the frame uniform — all into this
+    /// frame's copy of the per-frame buffers ([`FRAMES_PREPARED`]). The returned frame is
+    /// everything `encode` reads besides what was loaded.
     pub fn prepare(&mut self, gpu: &Gpu, packet: &FramePacket) -> PreparedFrame {
         let queue = &gpu.queue;
         let draw = packet.draw;
-        self.res.subjects.select(packet.slot);
-        self.receive_for(draw, packet.settled);
+        let seq = self.prepared;
+        self.prepared += 1;
+        let copy = (seq % FRAMES_PREPARED as u64) as usize;
+        let slot = self.res.subjects.slot(packet.subject_id);
+        self.receive_for(slot, draw, packet.settled);
         let mut uploads = 0;
-        if let Some(pose) = &packet.subject {
-            if let Some(s) = self.res.subjects.active_mut() {
-                uploads += s.gpu.update_pose(queue, pose.model, pose.pose, pose.world);
+        let mut subject = None;
+        if let Some(s) = slot.and_then(|k| self.res.subjects.get_mut(k)) {
+            if let Some(pose) = &packet.subject {
+                s.gpu.pose(pose.model, pose.pose, pose.world);
+                s.world = pose.world;
             }
-            self.res.subjects.world = pose.world;
-        }
-        let mut subject =
-            (draw.character && self.res.subjects.active().is_some()).then(|| SubjectDraw {
-                slot: self.res.subjects.active_slot(),
+            uploads += s.gpu.write_palettes(queue, copy);
+            subject = draw.character.then_some(SubjectDraw {
+                slot: slot.unwrap_or(0),
                 shading: draw.shading,
+                world: s.world,
             });
+        }
         let mut split = draw
             .shading
             .filter(|m| subject.is_some() && m.effects().screen_space);
@@ -139,9 +144,11 @@ impl Renderer {
             (split, subject) = (None, None);
         }
         let view = packet.view;
-        let shadow = self.shadow_view(view.light.position, view.view_proj);
+        let shadow = self.shadow_view(slot, view.light.position, view.view_proj);
         let output = OutputMode::for_format(self.res.format, view.exposure);
         let mut frame = PreparedFrame {
+            seq,
+            copy,
             size: packet.viewport,
             view,
             draw,
@@ -154,8 +161,11 @@ impl Renderer {
             uploads,
         };
         self.passes.prepare(queue, packet, &mut frame, &self.res);
+        for (pass, off) in frame.passes.iter_mut().zip(self.off) {
+            pass.runs &= !off;
+        }
         queue.write_buffer(
-            &self.res.frame_buffer,
+            &self.res.frame_buffers[copy],
             0,
             bytemuck::bytes_of(&frame.uniform),
         );
@@ -164,9 +174,10 @@ impl Renderer {
     }
 
     /// Installs the character pipelines built so far, waiting for those `draw` needs for the
-    /// subject's skin parts (with and without a normal map), or with `all` for every one.
-    fn receive_for(&mut self, draw: crate::scene::DrawSet, all: bool) {
-        let gpu = self.res.subjects.active().map(|s| &s.gpu);
+    /// skin parts of the subject in `slot` (with and without a normal map), or with `all`
+    /// for every one.
+    fn receive_for(&mut self, slot: Option<usize>, draw: crate::scene::DrawSet, all: bool) {
+        let gpu = slot.and_then(|k| self.res.subjects.get(k)).map(|s| &s.gpu);
         let (plain, mapped) = gpu.map_or((false, false), |g| (g.plain, g.normal_mapped));
         let mut need = [(ShadingModel::BASELINE, false); 2];
         let mut n = 0;
@@ -183,27 +194,27 @@ impl Renderer {
     }
 
     /// This frame's shadow view for a light at `light` ([`ShadowView::NONE`] when nothing
-    /// casts): fitted to the measurement scene's sphere, else to the sphere around the drawn
-    /// subject's posed box and cropped to the shadows the camera `camera` can see of it.
-    fn shadow_view(&self, light: Vec3, camera: glam::Mat4) -> ShadowView {
+    /// casts): fitted to the measurement scene's sphere, else to the sphere around the
+    /// subject in `slot`'s posed box and cropped to the shadows the camera `camera` can see
+    /// of it.
+    fn shadow_view(&self, slot: Option<usize>, light: Vec3, camera: glam::Mat4) -> ShadowView {
         let res = &self.res;
         let Some(maps) = &res.light_maps else {
             return ShadowView::NONE;
         };
-        let subject = res.subjects.active().is_some() && res.subject_casts;
-        if !(subject || res.occluder.is_some()) {
+        let subject = slot.and_then(|k| res.subjects.get(k));
+        if !(subject.is_some() && res.subject_casts || res.occluder.is_some()) {
             return ShadowView::NONE;
         }
         if let Some((centre, radius)) = res.shadow_fit {
             return ShadowView::fit(light, centre, radius, maps.size);
         }
         // The posed box where the subject has been posed, else its bind sphere and a margin.
-        let (centre, radius, bounds) = match res.subjects.posed_box() {
+        let (centre, radius, bounds) = match subject.and_then(|s| s.gpu.posed) {
             Some((lo, hi)) => (0.5 * (lo + hi), 0.5 * (hi - lo).length(), (lo, hi)),
             None => {
-                let (c, r) = res
-                    .subjects
-                    .world_sphere(POSE_MARGIN)
+                let (c, r) = subject
+                    .map(|s| s.world_sphere(POSE_MARGIN))
                     .unwrap_or(CHARACTER.sphere_at(Vec3::ZERO));
                 (c, r, (c - Vec3::splat(r), c + Vec3::splat(r)))
             }
@@ -213,10 +224,22 @@ impl Renderer {
 
     /// Records `frame` (see the module docs): the light's maps in passes of their own, then
     /// the scene's pass — into the output, or, ending with the subsurface pass, into its
-    /// targets — and the frame's last pass, which resolves into the output.
-    pub fn encode(&self, frame: &PreparedFrame, ctx: &mut PassCtx) -> RenderStats {
+    /// targets — and the frame's last pass, which resolves into the output. Reads only
+    /// `frame`, what was loaded and `frame`'s copy of the per-frame buffers; refuses (one
+    /// line) a frame whose copy a later frame has been prepared into.
+    pub fn encode(&self, frame: &PreparedFrame, ctx: &mut PassCtx) -> Result<RenderStats, String> {
+        let copies = FRAMES_PREPARED as u64;
+        if frame.seq + copies < self.prepared || frame.seq >= self.prepared {
+            return Err(format!(
+                "frame {} is stale: {} frames were prepared after it and its buffers hold a later one's (at most {} may wait to be encoded)",
+                frame.seq,
+                self.prepared.saturating_sub(frame.seq + 1),
+                FRAMES_PREPARED - 1
+            ));
+        }
         let mut stats = RenderStats::default();
         let res = &self.res;
+        let group = &res.frame_groups[frame.copy];
         self.passes.encode(frame, res, ctx.encoder, &mut stats);
         let split = frame.split.and(res.split.as_ref());
         {
@@ -224,7 +247,7 @@ impl Renderer {
                 Some(targets) => targets.scene_pass(ctx, res.clear),
                 None => resolve::output_pass(ctx, res.clear, Timed::Whole, "scene"),
             };
-            pass.set_bind_group(0, &res.frame_group, &[]);
+            pass.set_bind_group(0, group, &[]);
             self.passes
                 .draw(Stage::Scene, frame, res, &mut pass, &mut stats);
             if split.is_none() {
@@ -234,11 +257,11 @@ impl Renderer {
         }
         if split.is_some() {
             let mut pass = resolve::output_pass(ctx, res.clear, Timed::End, "subsurface");
-            pass.set_bind_group(0, &res.frame_group, &[]);
+            pass.set_bind_group(0, group, &[]);
             self.passes
                 .draw(Stage::Last, frame, res, &mut pass, &mut stats);
         }
-        stats
+        Ok(stats)
     }
 
     /// Encodes `frame` into `target` (untimed) and queues the copy its `read` methods
@@ -248,7 +271,7 @@ impl Renderer {
         gpu: &Gpu,
         target: &Offscreen,
         frame: &PreparedFrame,
-    ) -> RenderStats {
+    ) -> Result<RenderStats, String> {
         let mut encoder = gpu.device.create_command_encoder(&Default::default());
         let stats = self.encode(
             frame,
@@ -258,10 +281,10 @@ impl Renderer {
                 output: &target.view,
                 timer: None,
             },
-        );
+        )?;
         target.copy_out(&mut encoder);
         gpu.queue.submit([encoder.finish()]);
-        stats
+        Ok(stats)
     }
 
     // ---- pipelines -------------------------------------------------------------------
@@ -300,7 +323,7 @@ impl Renderer {
     /// Builds the passes the scene now needs (and again those it made stale), and sizes what
     /// they bind.
     pub(super) fn refresh_passes(&mut self, gpu: &Gpu) {
-        let ctx = build_ctx(gpu, &self.res, &self.set, self.wants);
+        let ctx = build_ctx(gpu, &self.res, &self.set, self.wanted);
         self.passes.refresh(&ctx);
         for pass in self.passes.each_mut().into_iter().flatten() {
             pass.resize(&gpu.device, &self.res);
@@ -345,11 +368,9 @@ impl Renderer {
     ) {
         self.prepare_for(gpu, (model, roles), &subject);
         let bound = model_sphere(model).unwrap_or(CHARACTER.sphere_at(Vec3::ZERO));
-        self.res.subjects.set_character(Subject {
-            gpu: subject,
-            bound,
-        });
-        self.res.casters.character = Some(CHARACTER);
+        self.res
+            .subjects
+            .set_character(Subject::new(subject, bound));
         self.set_material(gpu, &roles.optics);
         self.refresh_passes(gpu);
     }
@@ -382,16 +403,16 @@ impl Renderer {
         self.refresh_passes(gpu);
     }
 
-    /// Uploads another subject beside the character (the showroom's scanned head), its
-    /// materials drawn as `roles` says, its skin with the renderer's optics; returns its slot
-    /// for a packet's `slot` (the character is slot 0, loaded first). The character stays the
-    /// one drawn.
+    /// Uploads another subject beside the character under the scene's `id` for it (the
+    /// showroom's scanned head; a frame packet naming `id` draws it), its materials drawn as
+    /// `roles` says, its skin with the renderer's optics.
     pub fn add_subject(
         &mut self,
         gpu: &Gpu,
+        id: SubjectId,
         model: &Model,
         roles: &Roles,
-    ) -> Result<usize, String> {
+    ) -> Result<(), String> {
         if self.res.subjects.iter().next().is_none() {
             return Err(format!("{}: load the character first", model.source));
         }
@@ -399,26 +420,20 @@ impl Renderer {
         self.prepare_for(gpu, (model, roles), &subject);
         self.refresh_passes(gpu);
         let bound = model_sphere(model).unwrap_or(CHARACTER.sphere_at(Vec3::ZERO));
-        Ok(self.res.subjects.add(Subject {
-            gpu: subject,
-            bound,
-        }))
+        self.res.subjects.add(id, Subject::new(subject, bound));
+        Ok(())
     }
 
-    /// The subject drawn last (0: the character).
-    pub fn subject(&self) -> usize {
-        self.res.subjects.active_slot()
+    /// The world box of subject `id` as last posed (every vertex inside): what the shadow
+    /// map is fitted to.
+    pub fn subject_box(&self, id: SubjectId) -> Option<(Vec3, Vec3)> {
+        let slot = self.res.subjects.slot(id)?;
+        self.res.subjects.get(slot)?.gpu.posed
     }
 
-    /// The world box of the drawn subject as last posed (every vertex inside): what the
-    /// shadow map is fitted to.
-    pub fn subject_box(&self) -> Option<(Vec3, Vec3)> {
-        self.res.subjects.posed_box()
-    }
-
-    /// Triangles of the subject drawn.
+    /// Triangles of the character.
     pub fn character_triangles(&self) -> u32 {
-        self.res.subjects.active().map_or(0, |s| s.gpu.triangles)
+        self.res.subjects.get(0).map_or(0, |s| s.gpu.triangles)
     }
 
     /// Uploads a scene: the character, its materials drawn as `roles` says, and every prop
@@ -447,14 +462,13 @@ impl Renderer {
             kind,
             model,
         );
-        self.install_prop(kind, model, prop);
+        self.install_prop(kind, prop);
         self.refresh_passes(gpu);
     }
 
     /// Draws `prop`, uploaded from `model`, for `kind` (replacing any earlier one).
-    pub(super) fn install_prop(&mut self, kind: PropKind, model: &Model, prop: PropGpu) {
+    pub(super) fn install_prop(&mut self, kind: PropKind, prop: PropGpu) {
         self.res.props.retain(|p| p.kind != kind);
-        self.res.casters.set_prop(kind, model);
         self.res.props.push(prop);
     }
 
@@ -489,40 +503,27 @@ impl Renderer {
         self.res.light_maps.is_some()
     }
 
-    /// Builds the blob shadows if anything loaded casts one; returns whether they exist. The
-    /// frames' placements stage the props' blobs.
-    pub fn enable_blob_shadows(&mut self, gpu: &Gpu) -> bool {
-        self.wants.blobs = true;
+    /// Asks for the optional pass `id` (the blob shadows, the UI) and builds it where the
+    /// scene has what it draws for; returns whether it is built.
+    pub fn enable(&mut self, gpu: &Gpu, PassId(slot): PassId) -> bool {
+        self.wanted[slot] = true;
         self.refresh_passes(gpu);
-        self.passes.blobs.is_some()
+        self.passes_built()[slot]
     }
 
-    /// Switches built blob shadows on or off (the pass stays built).
-    pub fn set_blob_shadows(&mut self, on: bool) {
-        if let Some(b) = &mut self.passes.blobs {
-            b.enabled = on;
-        }
+    /// Switches pass `id` off or on (it stays built; off, it records nothing).
+    pub fn switch(&mut self, PassId(slot): PassId, on: bool) {
+        self.off[slot] = !on;
     }
 
-    /// Whether blob shadows are built and switched on.
-    pub fn blob_shadows(&self) -> bool {
-        self.passes.blobs.as_ref().is_some_and(|b| b.enabled)
-    }
-
-    /// Draws the UI handed over in the frames' packets, last in every frame (the game).
-    pub fn enable_ui(&mut self, gpu: &Gpu) {
-        self.wants.ui = true;
-        self.refresh_passes(gpu);
+    /// Whether pass `id` is built and switched on.
+    pub fn is_on(&self, PassId(slot): PassId) -> bool {
+        self.passes_built()[slot] && !self.off[slot]
     }
 
     /// Which passes are built ([`passes::NAMES`](super::passes::NAMES) order).
-    pub fn passes_built(&self) -> [bool; super::passes::PASS_COUNT] {
+    pub fn passes_built(&self) -> [bool; PASS_COUNT] {
         self.passes.each().map(|p| p.is_some())
-    }
-
-    /// Whether this renderer has the screen-space subsurface pass.
-    pub fn has_subsurface_pass(&self) -> bool {
-        self.passes.subsurface.is_some()
     }
 
     /// The output format.

@@ -1,86 +1,43 @@
 //! What the renderer owns and its passes read: the bind group layouts and samplers, the frame
 //! uniform and its bind group, the shading models' records, the scene as uploaded (subjects,
 //! props, what casts), and the textures passes share — the light's maps, written by the
-//! shadow and penumbra passes and read by the scene, and the subsurface targets, written by
-//! the scene and read by the subsurface pass. Passes hold only their own pipelines and bind
-//! groups; everything two of them touch lives here.
+//! shadow and penumbra passes and read by the scene, and the transient split targets, written
+//! by the scene and read by the pass that creates them. Passes hold only their own pipelines
+//! and bind groups; everything two of them touch lives here, in types of its own (no pass's).
 
 use glam::{Mat4, Vec3};
 
 use super::layouts::Layouts;
 use super::light_maps;
+use super::material_gpu::StandardKey;
 use super::model_gpu::ModelTable;
-use super::passes::blobs::Casters;
-use super::passes::subsurface::SplitTargets;
+use super::prepared::{per_frame, FRAMES_PREPARED};
 use super::prop_gpu::PropGpu;
 use super::skinned::SkinnedGpu;
+use super::targets::SplitTargets;
+use crate::scene::SubjectId;
 
-/// One subject's GPU side and its bounding sphere in its own space (centre, radius).
+/// One subject's GPU side, its bounding sphere in its own space (centre, radius) and where
+/// it was last placed (what `prepare` fits the shadow map to when it is not posed).
 pub struct Subject {
     pub gpu: SkinnedGpu,
     pub bound: (Vec3, f32),
-}
-
-/// The subjects uploaded: slot 0 the character, then others shown instead of it (the
-/// showroom's scanned head). One is drawn at a time; choosing another creates nothing.
-#[derive(Default)]
-pub struct Subjects {
-    slots: Vec<Subject>,
-    active: usize,
-    /// Where the active subject was last placed.
     pub world: Mat4,
 }
 
-impl Subjects {
-    /// Puts `subject` in slot 0 (replacing the character before it) and draws it.
-    pub fn set_character(&mut self, subject: Subject) {
-        match self.slots.first_mut() {
-            Some(slot) => *slot = subject,
-            None => self.slots.push(subject),
-        }
-        self.active = 0;
-    }
-
-    /// Adds a subject beside the character; returns its slot.
-    pub fn add(&mut self, subject: Subject) -> usize {
-        self.slots.push(subject);
-        self.slots.len() - 1
-    }
-
-    /// Draws the subject in `slot` from now on (an unknown slot leaves the one drawn).
-    pub fn select(&mut self, slot: usize) {
-        if slot < self.slots.len() {
-            self.active = slot;
+impl Subject {
+    pub fn new(gpu: SkinnedGpu, bound: (Vec3, f32)) -> Self {
+        Self {
+            gpu,
+            bound,
+            world: Mat4::IDENTITY,
         }
     }
 
-    /// The slot drawn now.
-    pub fn active_slot(&self) -> usize {
-        self.active
-    }
-
-    /// The subject drawn now, if any is loaded.
-    pub fn active(&self) -> Option<&Subject> {
-        self.slots.get(self.active)
-    }
-
-    pub fn active_mut(&mut self) -> Option<&mut Subject> {
-        self.slots.get_mut(self.active)
-    }
-
-    pub fn iter(&self) -> impl Iterator<Item = &Subject> {
-        self.slots.iter()
-    }
-
-    /// The box (world) of the active subject as last posed: every vertex lies inside.
-    pub fn posed_box(&self) -> Option<(Vec3, Vec3)> {
-        self.active()?.gpu.posed
-    }
-
-    /// The active subject's bounding sphere in the world where it was last placed, grown by
-    /// `margin` for what a pose may reach beyond the bind pose.
-    pub fn world_sphere(&self, margin: f32) -> Option<(Vec3, f32)> {
-        let (c, r) = self.active()?.bound;
+    /// Its bounding sphere in the world where it was last placed, grown by `margin` for
+    /// what a pose may reach beyond the bind pose.
+    pub fn world_sphere(&self, margin: f32) -> (Vec3, f32) {
+        let (c, r) = self.bound;
         let w = self.world;
         let scale = w
             .x_axis
@@ -88,7 +45,51 @@ impl Subjects {
             .length()
             .max(w.y_axis.truncate().length())
             .max(w.z_axis.truncate().length());
-        Some((w.transform_point3(c), r * scale * margin))
+        (w.transform_point3(c), r * scale * margin)
+    }
+}
+
+/// The subjects uploaded, each under the scene's id for it: the character
+/// ([`SubjectId::CHARACTER`], loaded first), then others shown instead of it (the showroom's
+/// scanned head). A frame's packet names the one it draws; choosing another creates nothing
+/// and changes nothing here.
+#[derive(Default)]
+pub struct Subjects {
+    slots: Vec<(SubjectId, Subject)>,
+}
+
+impl Subjects {
+    /// Puts `subject` first as the character (replacing the one before it).
+    pub fn set_character(&mut self, subject: Subject) {
+        match self.slots.first_mut() {
+            Some(slot) => *slot = (SubjectId::CHARACTER, subject),
+            None => self.slots.push((SubjectId::CHARACTER, subject)),
+        }
+    }
+
+    /// Keeps `subject` under `id` (replacing one the id named before).
+    pub fn add(&mut self, id: SubjectId, subject: Subject) {
+        match self.slots.iter_mut().find(|(i, _)| *i == id) {
+            Some(slot) => slot.1 = subject,
+            None => self.slots.push((id, subject)),
+        }
+    }
+
+    /// Where the subject the scene calls `id` is kept.
+    pub fn slot(&self, id: SubjectId) -> Option<usize> {
+        self.slots.iter().position(|(i, _)| *i == id)
+    }
+
+    pub fn get(&self, slot: usize) -> Option<&Subject> {
+        self.slots.get(slot).map(|(_, s)| s)
+    }
+
+    pub fn get_mut(&mut self, slot: usize) -> Option<&mut Subject> {
+        self.slots.get_mut(slot).map(|(_, s)| s)
+    }
+
+    pub fn iter(&self) -> impl Iterator<Item = &Subject> {
+        self.slots.iter().map(|(_, s)| s)
     }
 }
 
@@ -97,18 +98,18 @@ pub struct Resources {
     pub layouts: Layouts,
     /// Trilinear and repeating: every mesh texture's.
     pub sampler: wgpu::Sampler,
-    pub frame_buffer: wgpu::Buffer,
-    /// Group 0: the frame uniform, the shadow map, its comparison sampler, the penumbra map.
-    pub frame_group: wgpu::BindGroup,
+    /// The frame uniform, one per prepared frame's copy.
+    pub frame_buffers: [wgpu::Buffer; FRAMES_PREPARED],
+    /// Group 0 (one per copy): the frame uniform, the shadow map, its comparison sampler, the
+    /// penumbra map.
+    pub frame_groups: [wgpu::BindGroup; FRAMES_PREPARED],
     /// One record per shading model the scene can reach.
     pub models: ModelTable,
     pub subjects: Subjects,
     /// The standard materials' pipelines the subjects loaded need.
-    pub standard: Vec<super::passes::character::StandardKey>,
+    pub standard: Vec<StandardKey>,
     /// The prop kinds uploaded, one record each.
     pub props: Vec<PropGpu>,
-    /// What casts a blob shadow (recorded at load).
-    pub casters: Casters,
     /// The shadow map and the penumbra grid, once something casts.
     pub light_maps: Option<light_maps::LightMaps>,
     /// A measurement scene's shadow-only occluder (world-space triangles).
@@ -117,8 +118,8 @@ pub struct Resources {
     pub shadow_fit: Option<(Vec3, f32)>,
     /// Whether the drawn subject casts into the shadow map (measurement media do not).
     pub subject_casts: bool,
-    /// The subsurface pass's targets at the frame's size, where the scene can reach a
-    /// screen-space model (made by `Renderer::resize`).
+    /// The split targets at the frame's size, where a built pass creates them (the frame
+    /// graph's transient `Target::Split`, made by `Renderer::resize`).
     pub split: Option<SplitTargets>,
     /// What group 0 binds where there are no light maps, and its comparison sampler.
     pub light_defaults: light_maps::Defaults,
@@ -129,12 +130,14 @@ pub struct Resources {
 impl Resources {
     /// Rebinds group 0 to the current light maps (placeholders where there are none).
     pub fn rebind_frame_group(&mut self, device: &wgpu::Device) {
-        self.frame_group = light_maps::frame_group(
-            device,
-            &self.layouts,
-            &self.frame_buffer,
-            self.light_maps.as_ref(),
-            &self.light_defaults,
-        );
+        self.frame_groups = per_frame(|k| {
+            light_maps::frame_group(
+                device,
+                &self.layouts,
+                &self.frame_buffers[k],
+                self.light_maps.as_ref(),
+                &self.light_defaults,
+            )
+        });
     }
 }

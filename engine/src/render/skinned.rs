@@ -9,6 +9,7 @@ use glam::{Mat4, Vec3};
 use super::layouts::Layouts;
 use super::material_gpu::{MaterialGpu, ModelTextures};
 use super::mesh::GpuMesh;
+use super::prepared::{per_frame, FRAMES_PREPARED};
 use crate::anim::{joint_palette, JointBoxes, Pose};
 use crate::asset::{Model, MAX_JOINTS};
 use crate::scene::{Role, Roles};
@@ -24,9 +25,10 @@ pub struct Part {
 
 struct SkinGpu {
     skin: usize,
-    buffer: wgpu::Buffer,
-    group: wgpu::BindGroup,
-    /// CPU scratch for the palette (reused every frame, no allocation).
+    /// One palette buffer and its group per prepared frame's copy.
+    buffers: [wgpu::Buffer; FRAMES_PREPARED],
+    groups: [wgpu::BindGroup; FRAMES_PREPARED],
+    /// The palette as last posed (reused every frame, no allocation).
     palette: Vec<Mat4>,
     /// Where its joints' vertices are in bind space (for the posed box).
     reach: JointBoxes,
@@ -41,8 +43,11 @@ pub struct SkinnedGpu {
     pub normal_mapped: bool,
     /// Some skin part has none.
     pub plain: bool,
-    /// The world box of every vertex as last posed ([`Self::update_pose`]); `None` before.
+    /// The world box of every vertex as last posed ([`Self::pose`]); `None` before.
     pub posed: Option<(Vec3, Vec3)>,
+    /// Poses so far, and the one each copy of the palettes holds.
+    poses: u64,
+    written: [Option<u64>; FRAMES_PREPARED],
 }
 
 impl SkinnedGpu {
@@ -66,24 +71,28 @@ impl SkinnedGpu {
             let slot = match skins.iter().position(|s| s.skin == skin) {
                 Some(i) => i,
                 None => {
-                    let buffer = device.create_buffer(&wgpu::BufferDescriptor {
-                        label: Some("joint palette"),
-                        size: palette_size,
-                        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-                        mapped_at_creation: false,
+                    let buffers = per_frame(|_| {
+                        device.create_buffer(&wgpu::BufferDescriptor {
+                            label: Some("joint palette"),
+                            size: palette_size,
+                            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                            mapped_at_creation: false,
+                        })
                     });
-                    let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                        label: Some("joint palette"),
-                        layout: &layouts.skinned,
-                        entries: &[wgpu::BindGroupEntry {
-                            binding: 0,
-                            resource: buffer.as_entire_binding(),
-                        }],
+                    let groups = per_frame(|k| {
+                        device.create_bind_group(&wgpu::BindGroupDescriptor {
+                            label: Some("joint palette"),
+                            layout: &layouts.skinned,
+                            entries: &[wgpu::BindGroupEntry {
+                                binding: 0,
+                                resource: buffers[k].as_entire_binding(),
+                            }],
+                        })
                     });
                     skins.push(SkinGpu {
                         skin,
-                        buffer,
-                        group,
+                        buffers,
+                        groups,
                         palette: vec![Mat4::IDENTITY; model.skins[skin].joints.len()],
                         reach: JointBoxes::new(model.skins[skin].joints.len()),
                     });
@@ -122,6 +131,8 @@ impl SkinnedGpu {
             parts,
             skins,
             posed: None,
+            poses: 0,
+            written: [None; FRAMES_PREPARED],
         })
     }
 
@@ -130,42 +141,55 @@ impl SkinnedGpu {
         &self.parts
     }
 
-    /// Computes the joint palettes for `pose` placed at `world` and uploads them, and the
-    /// posed box ([`Self::posed`]); returns the uploads (one per skin).
-    pub fn update_pose(
-        &mut self,
-        queue: &wgpu::Queue,
-        model: &Model,
-        pose: &Pose,
-        world: Mat4,
-    ) -> u32 {
+    /// Computes the joint palettes for `pose` placed at `world` and the posed box
+    /// ([`Self::posed`]); [`Self::write_palettes`] uploads them.
+    pub fn pose(&mut self, model: &Model, pose: &Pose, world: Mat4) {
         for skin in &mut self.skins {
             joint_palette(model, skin.skin, pose, &mut skin.palette);
             for m in &mut skin.palette {
                 *m = world * *m;
             }
-            queue.write_buffer(&skin.buffer, 0, bytemuck::cast_slice(&skin.palette));
         }
         self.posed = self
             .skins
             .iter()
             .filter_map(|s| s.reach.posed(&s.palette))
             .reduce(|(a, b), (c, d)| (a.min(c), b.max(d)));
+        self.poses += 1;
+    }
+
+    /// Writes the palettes as last posed into the copy `copy` of the per-frame buffers,
+    /// unless it holds them already; returns the uploads (one per skin, or none).
+    pub fn write_palettes(&mut self, queue: &wgpu::Queue, copy: usize) -> u32 {
+        if self.written[copy] == Some(self.poses) {
+            return 0;
+        }
+        for skin in &self.skins {
+            queue.write_buffer(&skin.buffers[copy], 0, bytemuck::cast_slice(&skin.palette));
+        }
+        self.written[copy] = Some(self.poses);
         self.skins.len() as u32
     }
 
     /// Draws every part with the pipeline bound (group 2: the palette; group 3: the
     /// material): depth-only passes. Returns the draw calls.
-    pub fn draw(&self, pass: &mut wgpu::RenderPass<'_>) -> u32 {
+    pub fn draw(&self, pass: &mut wgpu::RenderPass<'_>, copy: usize) -> u32 {
         for part in &self.parts {
-            self.draw_part(pass, part, false);
+            self.draw_part(pass, part, false, copy);
         }
         self.parts.len() as u32
     }
 
-    /// Draws `part` (its palette at group 2 and, with `material`, its material at group 3).
-    pub fn draw_part(&self, pass: &mut wgpu::RenderPass<'_>, part: &Part, material: bool) {
-        pass.set_bind_group(2, &self.skins[part.skin].group, &[]);
+    /// Draws `part` (its palette's copy `copy` at group 2 and, with `material`, its material
+    /// at group 3).
+    pub fn draw_part(
+        &self,
+        pass: &mut wgpu::RenderPass<'_>,
+        part: &Part,
+        material: bool,
+        copy: usize,
+    ) {
+        pass.set_bind_group(2, &self.skins[part.skin].groups[copy], &[]);
         if material {
             pass.set_bind_group(3, &part.material.group, &[]);
         }

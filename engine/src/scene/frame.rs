@@ -34,6 +34,16 @@ pub struct DrawSet {
     pub ui: bool,
 }
 
+/// A subject as the scene names it (the renderer keeps its GPU side under the id it was
+/// uploaded with): the character, or another the scene shows instead (the showroom's head).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct SubjectId(pub u32);
+
+impl SubjectId {
+    /// The character (the renderer's first subject).
+    pub const CHARACTER: SubjectId = SubjectId(0);
+}
+
 /// The subject posed this frame: its model, pose and placement in the world.
 #[derive(Clone, Copy)]
 pub struct SubjectPose<'a> {
@@ -49,15 +59,14 @@ pub struct FramePacket<'a> {
     pub viewport: (u32, u32),
     pub view: FrameView,
     pub draw: DrawSet,
-    /// The renderer's subject slot drawn (0: the character).
-    pub slot: usize,
+    /// The subject drawn, by the scene's id for it.
+    pub subject_id: SubjectId,
     /// The subject's pose this frame; `None`: not posed (out of view: its palette is left).
     pub subject: Option<SubjectPose<'a>>,
-    /// The props placed this frame (the renderer draws those its view can see); `None`: as
-    /// placed before.
-    pub props: Option<&'a [PropInstance]>,
-    /// The UI's vertices, when they changed since they were last handed over.
-    pub ui: Option<&'a [UiVertex]>,
+    /// The props placed this frame (the renderer draws those its view can see).
+    pub props: &'a [PropInstance],
+    /// The UI's vertices (drawn when `draw.ui`).
+    pub ui: &'a [UiVertex],
     /// Whether every pipeline the scene can reach must be ready before this frame (play:
     /// nothing is created from its first frame on); otherwise only the one drawn.
     pub settled: bool,
@@ -71,10 +80,10 @@ impl<'a> FramePacket<'a> {
             viewport,
             view,
             draw,
-            slot: 0,
+            subject_id: SubjectId::CHARACTER,
             subject: None,
-            props: None,
-            ui: None,
+            props: &[],
+            ui: &[],
             settled: false,
         }
     }

@@ -10,7 +10,7 @@ mod props;
 mod roles;
 mod stage;
 
-pub use frame::{DrawSet, FramePacket, FrameView, SubjectPose};
+pub use frame::{DrawSet, FramePacket, FrameView, SubjectId, SubjectPose};
 pub use light::Light;
 pub use props::{PropInstance, PropKind};
 pub use roles::{Role, Roles};

@@ -54,6 +54,11 @@ const SHARED: &[SharedConst] = &[
         "the thinnest slab of the table, mm (shading::bake::SLAB_FIRST_MM)",
     ),
     shared(
+        "EXIT_COSINE_MIN",
+        Const::Float(subsurface::EXIT_COSINE_MIN),
+        "the smallest view cosine of the exit factor (shading::subsurface::EXIT_COSINE_MIN)",
+    ),
+    shared(
         "PENUMBRA_SPAN_MM",
         Const::F32(edge_spread::SPAN_MM as f32),
         "the edge-spread row's reach either side of an edge, mm (edge_spread::SPAN_MM)",

@@ -14,30 +14,38 @@
 //! C(η) (0.923 at η = 1.4; the rest is the boundary's specular reflection): a larger A is
 //! clamped to α' = 1.
 //!
-//! **The table**: A_e at η = 1.0, 1.1, …, 1.6 and α' = 1 − s², s = k/128 (dense toward
+//! **The table**: A_e at the η rows [`ETA_ROWS`] and α' = 1 − s², s = k/128 (dense toward
 //! α' → 1, where A_e changes fastest: A_e ≈ 1 − k·s there), each row one white Monte Carlo run
-//! whose nodes share their photons, so each row is monotone. Between η rows: cubic Lagrange
-//! interpolation; along s: monotone cubic (Fritsch–Carlson, [`super::interp`]) interpolation,
-//! inverted by bisection, so A ↔ α' is one monotone map both ways.
+//! whose nodes share their photons, so each row is monotone. The rows are 1.0, 1.1, …, 1.6
+//! plus five just above η = 1 (t = √(η − 1) = 0.05, 0.10, …, 0.25): total internal
+//! reflection sets in there, and A_e moves like powers of √(η − 1), so a cubic across the
+//! rows 1.0/1.1/1.2 alone was up to 1.7 % off between η 1.01 and 1.07. Between η rows: cubic
+//! Lagrange interpolation in t over the four nearest rows; along s: monotone cubic
+//! (Fritsch–Carlson, [`super::interp`]) interpolation, inverted by bisection, so A ↔ α' is one
+//! monotone map both ways.
 //!
 //! g: by the similarity relation the diffuse reflectance depends on the reduced albedo, so
 //! α' is the same for any g (the file's anisotropy sets σ_s = σ'_s/(1 − g)); the table is
 //! measured at g = 0. η outside [1.0, 1.6] is clamped to it (NaN: 1.0).
 
-/// η of the first row and the step between rows.
-pub const ETA_FIRST: f64 = 1.0;
-pub const ETA_STEP: f64 = 0.1;
+/// η of each row, rising: five rows just above 1 (t = √(η − 1) = 0.05 … 0.25), then 1.1 … 1.6.
+pub const ETA_ROWS: [f64; ETA_NODES] = [
+    1.0, 1.0025, 1.01, 1.0225, 1.04, 1.0625, 1.1, 1.2, 1.3, 1.4, 1.5, 1.6,
+];
 /// Rows (η).
-pub const ETA_NODES: usize = 7;
+pub const ETA_NODES: usize = 12;
+/// The seed offset of each row's walk: the rows 1.0, 1.1, …, 1.6 keep those they were first
+/// baked with (0 … 6), the rows added near 1 take the next ones.
+pub const ROW_SEED: [u64; ETA_NODES] = [0, 7, 8, 9, 10, 11, 1, 2, 3, 4, 5, 6];
 /// Intervals in s = √(1 − α') over [0, 1].
 pub const S_STEPS: usize = 128;
 /// Nodes per row, s = k/S_STEPS (k = 0: α' = 1, A = 1; k = S_STEPS: α' = 0, A = 0).
 pub const S_NODES: usize = S_STEPS + 1;
 
-const MAGIC: &[u8; 8] = b"DERMALB1";
-/// Bytes before the values: magic, rows and intervals (u32), η of the first row and its step
-/// (f64), photons per row and seed (u64).
-const HEADER: usize = 8 + 4 + 4 + 8 + 8 + 8 + 8;
+const MAGIC: &[u8; 8] = b"DERMALB2";
+/// Bytes before the values: magic, rows and intervals (u32), photons per row and seed (u64),
+/// the η of every row (f64).
+const HEADER: usize = 8 + 4 + 4 + 8 + 8 + 8 * ETA_NODES;
 /// The file's size: the header, then A and its standard error (f32) per row and node.
 pub const FILE_SIZE: usize = HEADER + 2 * 4 * ETA_NODES * S_NODES;
 
@@ -59,7 +67,16 @@ pub fn node_albedo(k: usize) -> f64 {
 
 /// η of row i.
 pub fn row_eta(i: usize) -> f64 {
-    ETA_FIRST + ETA_STEP * i as f64
+    ETA_ROWS[i]
+}
+
+/// The interpolation axis across rows: t = √(η − 1) (0 for η ≤ 1 and NaN).
+fn row_axis(eta: f64) -> f64 {
+    if eta > 1.0 {
+        (eta - 1.0).sqrt()
+    } else {
+        0.0
+    }
 }
 
 const fn le(b: &[u8], at: usize, n: usize) -> u64 {
@@ -85,12 +102,19 @@ const fn parse(b: &[u8]) -> Table {
         i += 1;
     }
     assert!(le(b, 8, 4) == ETA_NODES as u64 && le(b, 12, 4) == S_STEPS as u64);
-    assert!(le(b, 16, 8) == ETA_FIRST.to_bits() && le(b, 24, 8) == ETA_STEP.to_bits());
+    let mut r = 0;
+    while r < ETA_NODES {
+        assert!(
+            le(b, 32 + 8 * r, 8) == ETA_ROWS[r].to_bits(),
+            "albedo.table: other η rows (`dermis lut --albedo-only`)"
+        );
+        r += 1;
+    }
     let mut t = Table {
         multi: [[0.0; S_NODES]; ETA_NODES],
         std_err: [[0.0; S_NODES]; ETA_NODES],
-        photons: le(b, 32, 8),
-        seed: le(b, 40, 8),
+        photons: le(b, 16, 8),
+        seed: le(b, 24, 8),
     };
     let mut r = 0;
     while r < ETA_NODES {
@@ -115,10 +139,11 @@ impl Table {
         let mut out = MAGIC.to_vec();
         out.extend((ETA_NODES as u32).to_le_bytes());
         out.extend((S_STEPS as u32).to_le_bytes());
-        out.extend(ETA_FIRST.to_le_bytes());
-        out.extend(ETA_STEP.to_le_bytes());
         out.extend(self.photons.to_le_bytes());
         out.extend(self.seed.to_le_bytes());
+        for eta in ETA_ROWS {
+            out.extend(eta.to_le_bytes());
+        }
         for v in self.multi.iter().chain(&self.std_err).flatten() {
             out.extend(v.to_le_bytes());
         }
@@ -131,20 +156,14 @@ impl Table {
             && b.starts_with(MAGIC)
             && le(b, 8, 4) == ETA_NODES as u64
             && le(b, 12, 4) == S_STEPS as u64
-            && le(b, 16, 8) == ETA_FIRST.to_bits()
-            && le(b, 24, 8) == ETA_STEP.to_bits();
+            && (0..ETA_NODES).all(|r| le(b, 32 + 8 * r, 8) == ETA_ROWS[r].to_bits());
         ok.then(|| parse(b))
     }
 
     /// A at every s node for relative index `eta` (clamped to the table's range): cubic
-    /// Lagrange interpolation over the four nearest rows.
+    /// Lagrange interpolation in t = √(η − 1) over the four nearest rows.
     pub fn row(&self, eta: f64) -> [f64; S_NODES] {
-        let x = if eta.is_finite() {
-            (eta - ETA_FIRST) / ETA_STEP
-        } else {
-            0.0
-        };
-        let (first, w) = super::interp::lagrange4(x, ETA_NODES);
+        let (first, w) = super::interp::lagrange4_at(row_axis(eta), &ETA_ROWS.map(row_axis));
         std::array::from_fn(|k| {
             (0..4)
                 .map(|i| w[i] * f64::from(self.multi[first + i][k]))
@@ -170,11 +189,11 @@ fn unit(x: f64) -> f64 {
 
 /// η clamped to the table's rows (NaN → the first).
 fn table_eta(eta: f64) -> f64 {
-    let last = row_eta(ETA_NODES - 1);
-    if eta > ETA_FIRST {
+    let (first, last) = (ETA_ROWS[0], ETA_ROWS[ETA_NODES - 1]);
+    if eta > first {
         eta.min(last)
     } else {
-        ETA_FIRST
+        first
     }
 }
 

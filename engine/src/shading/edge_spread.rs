@@ -6,6 +6,7 @@
 //! indexed by the distance the penumbra map gives (`render/passes/penumbra.rs`).
 
 use super::bake::Bake;
+use super::material::Material;
 
 /// The LUT row spans d ∈ [−SPAN, SPAN] mm, quadratically (fine near the edge, where the
 /// function turns; coarse in the tails, stored as log2 so exponential tails interpolate).
@@ -16,6 +17,32 @@ pub const SPAN_MM: f64 = 128.0;
 /// side, so its visibility rises linearly over this width; `penumbra()` reads the edge's place
 /// from it (and the renderer's shadow view sets its normal offset from it).
 pub const SHADOW_RAMP_TEXELS: f32 = 2.0;
+
+/// How many diffusion lengths into the shadow the edge-spread function is carried: its tail
+/// falls off as e^(−d/ℓ), so past this many lengths what bleeds is under ~10⁻⁴ of the lit
+/// plateau (the path-traced edge scenes are scored out to 10ℓ of the longest channel).
+pub const REACH_LENGTHS: f64 = 12.0;
+
+/// The longest diffusion length ℓ = 1/σ_tr of `m`'s channels (mm; the widest the shadow
+/// bleeds), [`SPAN_MM`] for a medium that barely absorbs.
+pub fn diffusion_length_mm(m: &Material) -> f64 {
+    let longest = m
+        .sigma_tr()
+        .into_iter()
+        .map(|s| if s > 0.0 { 1.0 / s } else { f64::INFINITY })
+        .fold(0.0, f64::max);
+    if longest.is_finite() {
+        longest.min(SPAN_MM)
+    } else {
+        SPAN_MM
+    }
+}
+
+/// How far from an edge (mm) `m`'s edge-spread function differs from a hard shadow by more
+/// than its far tail: [`REACH_LENGTHS`] diffusion lengths, at most the LUT row's span.
+pub fn reach_mm(m: &Material) -> f64 {
+    (REACH_LENGTHS * diffusion_length_mm(m)).min(SPAN_MM)
+}
 
 /// Area of the part of a disk of radius `r` (centred at 0) with x < d.
 fn disk_below(r: f64, d: f64) -> f64 {
@@ -121,6 +148,24 @@ mod tests {
         // The far tail falls off exponentially, not to zero at a filter's edge.
         let (a, b) = (esf(&wide, 0, -20.0), esf(&wide, 0, -30.0));
         assert!(a > 0.0 && b > 0.0 && b < a);
+    }
+
+    #[test]
+    fn the_reach_follows_the_longest_diffusion_length() {
+        use crate::shading::material::{SKIN1, WHITE_COAT};
+        let l = diffusion_length_mm(&SKIN1);
+        // Red is skin's longest channel: 1/sqrt(3 σ_a σ'_t).
+        let red = 1.0 / (3.0 * SKIN1.sigma_a[0] * SKIN1.sigma_t_prime()[0]).sqrt();
+        assert!((l - red).abs() < 1e-9, "{l} vs {red}");
+        assert!((reach_mm(&SKIN1) - REACH_LENGTHS * red).abs() < 1e-9);
+        // A medium that barely absorbs carries light across the whole row.
+        assert!(diffusion_length_mm(&WHITE_COAT) > l);
+        assert_eq!(reach_mm(&WHITE_COAT), SPAN_MM);
+        let clear = Material {
+            sigma_a: [0.0; 3],
+            ..SKIN1
+        };
+        assert_eq!(diffusion_length_mm(&clear), SPAN_MM);
     }
 
     #[test]

@@ -21,6 +21,25 @@ pub fn lagrange4(x: f64, n: usize) -> (usize, [f64; 4]) {
     (first, w)
 }
 
+/// Cubic Lagrange weights at `x` over the four nearest of the rising `nodes` (at least
+/// four; `x` clamped to their span): the first node and the weights. At a node the weights
+/// are exactly that node's 1 and the others' 0.
+pub fn lagrange4_at(x: f64, nodes: &[f64]) -> (usize, [f64; 4]) {
+    let n = nodes.len();
+    let x = if x.is_finite() { x } else { nodes[0] };
+    let x = x.clamp(nodes[0], nodes[n - 1]);
+    let i = nodes.partition_point(|&t| t <= x).clamp(1, n - 1) - 1;
+    let first = i.saturating_sub(1).min(n - 4);
+    let t = &nodes[first..first + 4];
+    let w = std::array::from_fn(|i| {
+        (0..4)
+            .filter(|&j| j != i)
+            .map(|j| (x - t[j]) / (t[i] - t[j]))
+            .product()
+    });
+    (first, w)
+}
+
 /// Linear weights at `x` (node units) between two of `n` ≥ 2 nodes: the first and its
 /// neighbour's weight.
 pub fn linear2(x: f64, n: usize) -> (usize, f64) {
@@ -70,6 +89,10 @@ mod tests {
             let (i, w) = lagrange4(x, 8);
             let v: f64 = (0..4).map(|k| w[k] * f((i + k) as f64)).sum();
             assert!((v - f(x)).abs() < 1e-12, "{x}");
+            let nodes: Vec<f64> = (0..8).map(|k| k as f64).collect();
+            let (i2, w2) = lagrange4_at(x, &nodes);
+            assert_eq!(i2, i);
+            assert!(w.iter().zip(&w2).all(|(a, b)| (a - b).abs() < 1e-12));
             let (j, g) = linear2(x, 8);
             assert!(((j as f64 + g) - x).abs() < 1e-12);
         }

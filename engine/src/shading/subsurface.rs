@@ -25,6 +25,13 @@ const SLAB_FLOOR: f64 = 1e-30;
 pub const ANGLES: u32 = 8;
 /// Relative pixel-size difference beyond which a neighbour is another surface.
 pub const DEPTH_TOLERANCE: f32 = 0.1;
+/// The smallest view cosine the exit factor F_t(η, n·v) is taken at (F_t(1.4, 0.25) = 0.76 of
+/// 0.97 at normal view). A shaded pixel at a silhouette sees its surface at grazing over a
+/// sub-pixel band, where the path-traced truth averages F_t over the pixel's footprint; the
+/// shading normal (normal-mapped, interpolated) reaches n·v ≈ 0 there and took F_t → 0: a thin
+/// dark outline along the nose and the eyelids in both spatial models, absent in `ward`
+/// (which has no exit factor) and gone with this floor.
+pub const EXIT_COSINE_MIN: f64 = 0.25;
 /// The pre-integration LUT's curvature scale R0 (mm): the LUT's v axis is R0/(R0 + ρ).
 pub const LUT_R0_MM: f64 = 10.0;
 
@@ -336,7 +343,8 @@ fn back_path_mm(p: &Packed, px: &Pixel, back: f64) -> f64 {
 /// f64 twin of `sss_split`: (local radiance, irradiance to spread, exit factor).
 pub fn split(pm: &ModelParams, px: &Pixel) -> (DVec3, DVec3, f64) {
     let p = unpack(pm);
-    let exit = fresnel::transmittance_shader(p.eta, px.n.dot(px.v).max(0.0)) * p.exit_norm;
+    let exit =
+        fresnel::transmittance_shader(p.eta, px.n.dot(px.v).max(EXIT_COSINE_MIN)) * p.exit_norm;
     let e = px.irradiance();
     let spread = spread(&p, px);
     let translucency = if p.translucent {

@@ -1,13 +1,15 @@
-//! The game as the frame driver runs it: one [`Session`] with its [`GameGpu`], drawn by
-//! [`FrameDriver`](dermis_engine::render::FrameDriver) into a window surface or an offscreen target,
-//! the governor fed what each frame cost. Every shell runs the game through
-//! [`GameFrame::run`]: the desktop window, the Android app, `play`, the soak, `bench effects`
-//! and the steady-state test.
+//! The game's frame, straight-line code every shell runs through [`GameFrame::run`] (the
+//! desktop window, the Android app, `play`, the soak, `bench effects` and the steady-state
+//! test), between the frame helpers of the core's
+//! [`FrameDriver`](dermis_engine::render::FrameDriver), into a window surface or an offscreen
+//! target:
 //!
-//! One frame, top to bottom: the session updates (input, rules, animation, camera, UI, the
+//! begin (acquire, dt) → the session updates (input, rules, animation, camera, UI, the
 //! governor's tier) → the session's packet (plain data, [`Session::extract`]) → the renderer
-//! prepares it ([`GameGpu::last_frame`]) → the renderer encodes the prepared frame → submit.
-//! Nothing goes back from the GPU side into the session.
+//! prepares it ([`GameGpu::prepare`] → a `PreparedFrame`, everything encode reads) → the
+//! renderer encodes that frame → finish (submit, present) → the governor is told what it
+//! cost. Nothing goes back from the GPU side into the session, and nothing calls the game
+//! from below.
 
 use super::{FrameInfo, GameGpu, Session, Viewport};
 use crate::lifecycle::FrameStatus;
@@ -15,7 +17,7 @@ use crate::rules::Screen;
 use crate::soak::FrameSample;
 use dermis_engine::asset::Model;
 use dermis_engine::render::{
-    FrameDriver, FrameOutput, FrameTimes, FrameWork, Gpu, Output, PassCtx, RenderStats,
+    FrameDriver, FrameOutput, FrameTimes, Gpu, Output, PreparedFrame, RenderStats,
 };
 use dermis_engine::ui::Insets;
 
@@ -39,6 +41,8 @@ pub struct GameFrame<'a> {
     pub info: FrameInfo,
     /// What the last encode drew.
     pub stats: RenderStats,
+    /// The frame the last run prepared.
+    pub prepared: Option<PreparedFrame>,
 }
 
 impl<'a> GameFrame<'a> {
@@ -53,20 +57,62 @@ impl<'a> GameFrame<'a> {
             after_encode: None,
             info: FrameInfo::default(),
             stats: RenderStats::default(),
+            prepared: None,
         }
     }
 
-    /// Runs one frame with `driver` into `output` and feeds the session's governor what it
-    /// cost (the larger of its CPU time and the latest GPU time, as the soak measures it),
-    /// and the frame-time overlay the wall-clock time between frames, the CPU time and the
-    /// GPU time.
+    /// Runs one frame with `driver` into `output` (see the module docs) and feeds the
+    /// session's governor what it cost (the larger of its CPU time and the latest GPU time,
+    /// as the soak measures it), and the frame-time overlay the wall-clock time between
+    /// frames, the CPU time and the GPU time.
     pub fn run(
         &mut self,
         driver: &mut FrameDriver,
         gpu: &Gpu,
-        output: Output<'_>,
+        mut output: Output<'_>,
     ) -> Result<FrameTimes, FrameStatus> {
-        let times = driver.frame(gpu, output, self)?;
+        let mut frame = driver.begin(gpu, &mut output)?;
+        let (width, height) = frame.size;
+        self.gpu.renderer.resize(gpu, frame.size);
+        // Update.
+        let viewport = Viewport {
+            width,
+            height,
+            scale: self.scale,
+            insets: self.insets,
+        };
+        self.session.gui.offer_head(self.gpu.has_head());
+        self.info = self
+            .session
+            .update(frame.dt as f32, self.character, viewport);
+        driver.updated(&mut frame);
+        // Extract and prepare (play: every pipeline ready first).
+        let settled = self.session.game.screen() == Screen::Play;
+        let head = self.gpu.head.clone();
+        let packet = self
+            .session
+            .extract(self.character, head.as_deref(), settled);
+        let prepared = self.gpu.prepare(gpu, &packet);
+        // Encode the frame just prepared (it cannot be stale).
+        self.stats = self
+            .gpu
+            .renderer
+            .encode(&prepared, &mut frame.pass_ctx(&output))
+            .unwrap_or_else(|e| {
+                log::error!("{e}");
+                RenderStats::default()
+            });
+        self.prepared = Some(prepared);
+        if let Some(hook) = &mut self.after_encode {
+            let out = FrameOutput {
+                targets: output.targets(),
+                view: &frame.view,
+                texture: &frame.texture,
+            };
+            hook(&mut frame.encoder, self.session, &out);
+        }
+        let times = driver.finish(gpu, frame, &mut output, self.stats);
+        // The governor and the overlay.
         let cost = self
             .simulated_cost_ms
             .unwrap_or_else(|| driver.cost_ms(&times));
@@ -75,50 +121,6 @@ impl<'a> GameFrame<'a> {
         let interval = gui.frame_started(times.start);
         gui.record_frame_time(interval, times.cpu_ms(), driver.last_gpu_ms());
         Ok(times)
-    }
-}
-
-impl FrameWork for GameFrame<'_> {
-    fn update(&mut self, dt: f64, width: u32, height: u32) {
-        let viewport = Viewport {
-            width,
-            height,
-            scale: self.scale,
-            insets: self.insets,
-        };
-        self.session.gui.offer_head(self.gpu.has_head());
-        self.info = self.session.update(dt as f32, self.character, viewport);
-    }
-
-    fn resize(&mut self, gpu: &Gpu, width: u32, height: u32) {
-        self.gpu.renderer.resize(gpu, (width, height));
-    }
-
-    /// The session's packet, prepared by the renderer (play: every pipeline ready first).
-    fn upload(&mut self, gpu: &Gpu) {
-        let settled = self.session.game.screen() == Screen::Play;
-        let head = self.gpu.head.clone();
-        let packet = self
-            .session
-            .extract(self.character, head.as_deref(), settled);
-        self.gpu.prepare(gpu, &packet);
-    }
-
-    fn encode(
-        &mut self,
-        encoder: &mut wgpu::CommandEncoder,
-        output: &FrameOutput<'_>,
-    ) -> RenderStats {
-        self.stats = self.gpu.encode(&mut PassCtx {
-            encoder,
-            targets: output.targets,
-            output: output.view,
-            timer: None,
-        });
-        if let Some(hook) = &mut self.after_encode {
-            hook(encoder, self.session, output);
-        }
-        self.stats
     }
 }
 

@@ -6,12 +6,13 @@
 //! swaps what is drawn and creates nothing. It sees frame packets, never the session
 //! ([`GameFrame`](super::GameFrame) hands them over).
 
+use dermis_engine::render::passes::PassId;
 use std::sync::Arc;
 
 use dermis_engine::anim::Pose;
 use dermis_engine::asset::Model;
-use dermis_engine::render::{Gpu, PassCtx, PipelineSet, PreparedFrame, RenderStats, Renderer};
-use dermis_engine::scene::{FramePacket, HeadLoad, Roles, SceneAssets};
+use dermis_engine::render::{Gpu, PipelineSet, PreparedFrame, Renderer};
+use dermis_engine::scene::{FramePacket, HeadLoad, Roles, SceneAssets, SubjectId};
 use dermis_engine::shading::ShadingModel;
 
 pub struct GameGpu {
@@ -22,14 +23,14 @@ pub struct GameGpu {
     head_load: HeadLoad,
     /// Frames prepared.
     frames: u64,
-    /// The frame prepared last (what the next encode records).
-    frame: Option<PreparedFrame>,
 }
 
-/// The scanned head as the showroom draws it: its renderer slot, the model and its (rest)
-/// pose for the joint palette.
+/// The scene's id for the showroom's scanned head.
+pub const HEAD: SubjectId = SubjectId(1);
+
+/// The scanned head as the showroom draws it (uploaded as [`HEAD`]): the model and its
+/// (rest) pose for the joint palette.
 pub struct ShowroomHead {
-    pub slot: usize,
     pub model: Model,
     pub pose: Pose,
 }
@@ -52,14 +53,13 @@ impl GameGpu {
             (&assets.character, &assets.roles, &assets.props),
         )?;
         // Contact shadows under the runner and the props, so nothing floats.
-        renderer.enable_blob_shadows(gpu);
-        renderer.enable_ui(gpu);
+        renderer.enable(gpu, PassId::blobs);
+        renderer.enable(gpu, PassId::ui);
         Ok(Self {
             renderer,
             head: None,
             head_load: assets.head.clone(),
             frames: 0,
-            frame: None,
         })
     }
 
@@ -69,17 +69,17 @@ impl GameGpu {
         self.head.is_some() || self.head_load.expected()
     }
 
-    /// Prepares the frame `packet` describes (what [`Self::encode`] records next). What
+    /// Prepares the frame `packet` describes, for the renderer's `encode`. What
     /// waits until the first frame is out (it would delay it) but not into play (a `settled`
     /// packet) is done first: the showroom's head, then the pipeline builder — the head
     /// first, so its normal-mapped pipelines join the builder's list.
-    pub fn prepare(&mut self, gpu: &Gpu, packet: &FramePacket) {
+    pub fn prepare(&mut self, gpu: &Gpu, packet: &FramePacket) -> PreparedFrame {
         if self.frames > 0 || packet.settled {
             self.upload_head(gpu);
             self.renderer.start_pipeline_builder();
         }
         self.frames += 1;
-        self.frame = Some(self.renderer.prepare(gpu, packet));
+        self.renderer.prepare(gpu, packet)
     }
 
     /// Uploads the showroom's head, waiting for its decoder if it is not done (it started
@@ -90,11 +90,14 @@ impl GameGpu {
         let Some(model) = load.wait().cloned() else {
             return;
         };
-        match self.renderer.add_subject(gpu, &model, &Roles::of(&model)) {
-            Ok(slot) => {
+        match self
+            .renderer
+            .add_subject(gpu, HEAD, &model, &Roles::of(&model))
+        {
+            Ok(()) => {
                 let mut pose = Pose::new(&model);
                 pose.update_world(&model);
-                self.head = Some(Arc::new(ShowroomHead { slot, model, pose }));
+                self.head = Some(Arc::new(ShowroomHead { model, pose }));
             }
             Err(e) => log::warn!("the showroom's head is left out: {e}"),
         }
@@ -112,18 +115,5 @@ impl GameGpu {
     /// (or none to upload) and every pipeline built (the window saves its pipeline cache then).
     pub fn loaded(&self) -> bool {
         self.frames > 0 && !self.head_load.expected() && !self.renderer.pipelines_loading()
-    }
-
-    /// The frame prepared last.
-    pub fn last_frame(&self) -> Option<&PreparedFrame> {
-        self.frame.as_ref()
-    }
-
-    /// Records the frame prepared last.
-    pub fn encode(&self, ctx: &mut PassCtx) -> RenderStats {
-        match &self.frame {
-            Some(frame) => self.renderer.encode(frame, ctx),
-            None => RenderStats::default(),
-        }
     }
 }

@@ -15,7 +15,7 @@ mod settings;
 pub mod showroom;
 
 pub use frame::{soak_sample, AfterEncode, GameFrame};
-pub use gpu::{GameGpu, ShowroomHead};
+pub use gpu::{GameGpu, ShowroomHead, HEAD};
 pub use load::{GameLoad, GameSetup, Loaded};
 pub use menu::MenuLayout;
 pub use screens::{GameUi, UiOutcome};

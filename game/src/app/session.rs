@@ -9,6 +9,7 @@ use std::path::PathBuf;
 
 use glam::{Mat4, Vec3};
 
+use super::gpu::HEAD;
 use super::showroom::{head_matrix, is_showroom, Subject};
 use super::{GameUi, Settings, Showroom, ShowroomHead};
 use crate::governor::{Change, Governor, GovernorConfig, Needs, Tiers};
@@ -17,7 +18,8 @@ use dermis_engine::anim::{bind_pose_bounds, find_clips, fit_to_height, Clips, Po
 use dermis_engine::asset::Model;
 use dermis_engine::camera::{CameraPose, FollowCamera, Frustum};
 use dermis_engine::scene::{
-    DrawSet, FramePacket, FrameView, Light, PropInstance, SubjectPose, CHARACTER, EXPOSURE,
+    DrawSet, FramePacket, FrameView, Light, PropInstance, SubjectId, SubjectPose, CHARACTER,
+    EXPOSURE,
 };
 use dermis_engine::shading::ShadingModel;
 use dermis_engine::ui::{Insets, Ui};
@@ -425,18 +427,16 @@ impl Session {
 
     /// This frame's packet for the GPU side (the extract step: plain data, no GPU object).
     /// `head`: the showroom's scanned head, when the GPU side holds it; `settled`: every
-    /// pipeline must be ready (play). The UI's vertices are in it when they changed, and are
-    /// then counted as handed over.
+    /// pipeline must be ready (play). It describes the whole frame (the UI's vertices with
+    /// their version, every prop placed) and changes nothing here.
     pub fn extract<'a>(
-        &'a mut self,
+        &'a self,
         character: &'a Model,
         head: Option<&'a ShowroomHead>,
         settled: bool,
     ) -> FramePacket<'a> {
-        let fresh_ui = self.ui.needs_upload();
-        self.ui.mark_uploaded();
         let aspect = self.viewport.width as f32 / self.viewport.height.max(1) as f32;
-        let (slot, subject) = match head.filter(|_| self.showroom.subject() == Subject::Head) {
+        let (id, subject) = match head.filter(|_| self.showroom.subject() == Subject::Head) {
             Some(head) => {
                 let (feet, _) = self.game.player_transform();
                 let pose = SubjectPose {
@@ -444,7 +444,7 @@ impl Session {
                     pose: &head.pose,
                     world: head_matrix(feet),
                 };
-                (head.slot, Some(pose))
+                (HEAD, Some(pose))
             }
             None => {
                 let pose = SubjectPose {
@@ -452,7 +452,7 @@ impl Session {
                     pose: &self.pose,
                     world: self.game.player_matrix() * self.fit,
                 };
-                (0, self.character_visible.then_some(pose))
+                (SubjectId::CHARACTER, self.character_visible.then_some(pose))
             }
         };
         let view = self.view();
@@ -465,10 +465,10 @@ impl Session {
                 exposure: EXPOSURE,
             },
             draw: self.draw_set(),
-            slot,
+            subject_id: id,
             subject,
-            props: Some(&self.props),
-            ui: fresh_ui.then(|| self.ui.vertices()),
+            props: &self.props,
+            ui: self.ui.vertices(),
             settled,
         }
     }

@@ -114,7 +114,9 @@ impl HeadRenderer {
         let frame = self
             .renderer
             .prepare(gpu, &FramePacket::new((w, h), view, draw));
-        self.renderer.draw_offscreen(gpu, &self.target, &frame);
+        if let Err(e) = self.renderer.draw_offscreen(gpu, &self.target, &frame) {
+            log::error!("{e}");
+        }
     }
 
     /// Linear radiance [W m⁻² sr⁻¹] per pixel (rows top to bottom) under a white point light

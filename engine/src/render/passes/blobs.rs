@@ -5,20 +5,21 @@
 //! never writing depth, so whatever stands on the ground covers its own shadow; alpha — the
 //! subsurface pass's marker — and the spread target are write-masked off.
 //!
-//! The pass exists only in a renderer that enabled the shadows and has a caster loaded; the
+//! The pass exists only in a renderer that asked for it (`Renderer::enable`) and has a caster
+//! loaded (the character, or a prop of a kind that casts); the
 //! split variant only where the scene can reach a screen-space model. Per frame the blobs are
-//! staged into buffers reserved at load and uploaded only when they changed.
+//! staged into buffers reserved at load and uploaded into the frame's copy of the instance
+//! buffer only when that copy holds others.
 
 use crate::render::pipelines::{pipeline_layout, wgsl_module};
 use glam::{Mat4, Vec3};
 
-use super::subsurface::SPLIT_FORMAT;
-use super::{BuildCtx, Pass, Stage};
-use crate::asset::Model;
+use super::{Access, BuildCtx, Declared, Pass, Target};
 use crate::render::pipelines::PipelineDevice;
-use crate::render::prepared::{Drawn, PassFrame, PreparedFrame};
+use crate::render::prepared::{per_frame, Drawn, PassFrame, PreparedFrame, FRAMES_PREPARED};
+use crate::render::prop_gpu::{Footprint, PropGpu};
 use crate::render::resources::Resources;
-use crate::render::targets::{depth_state, multisample, MSAA_SAMPLES};
+use crate::render::targets::{depth_state, multisample, scene_targets, MSAA_SAMPLES};
 use crate::scene::{CharacterBound, FramePacket, PropInstance, PropKind, CHARACTER};
 use crate::shader::{compose, ShaderDefs};
 
@@ -94,73 +95,10 @@ impl Blob {
     }
 }
 
-/// A prop model's footprint on the ground, in model space.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Footprint {
-    /// Centre (x, z) and half extents (x, z) of its bounds seen from above (m).
-    pub centre: [f32; 2],
-    pub half: [f32; 2],
-    /// Its lowest point (m).
-    pub min_y: f32,
-}
-
-impl Footprint {
-    /// The bounds of `model`'s meshes in its rest pose, seen from above; `None` without
-    /// geometry.
-    pub fn of(model: &Model) -> Option<Self> {
-        let mut lo = Vec3::splat(f32::INFINITY);
-        let mut hi = Vec3::splat(f32::NEG_INFINITY);
-        let mut stack: Vec<(usize, Mat4)> =
-            model.roots.iter().map(|&r| (r, Mat4::IDENTITY)).collect();
-        while let Some((n, parent)) = stack.pop() {
-            let node = &model.nodes[n];
-            let world = parent * node.local.matrix();
-            if let Some(mesh) = node.mesh {
-                for prim in &model.meshes[mesh].primitives {
-                    let (a, b) = (prim.bounds.min, prim.bounds.max);
-                    for i in 0..8 {
-                        let corner = Vec3::new(
-                            if i & 1 == 0 { a.x } else { b.x },
-                            if i & 2 == 0 { a.y } else { b.y },
-                            if i & 4 == 0 { a.z } else { b.z },
-                        );
-                        let p = world.transform_point3(corner);
-                        lo = lo.min(p);
-                        hi = hi.max(p);
-                    }
-                }
-            }
-            stack.extend(node.children.iter().map(|&c| (c, world)));
-        }
-        (lo.x <= hi.x).then_some(Self {
-            centre: [(lo.x + hi.x) * 0.5, (lo.z + hi.z) * 0.5],
-            half: [(hi.x - lo.x) * 0.5, (hi.z - lo.z) * 0.5],
-            min_y: lo.y,
-        })
-    }
-}
-
-/// What casts: the footprints of the loaded casting prop kinds and whether a character is
-/// loaded (recorded at load, so the shadows can be enabled later).
-#[derive(Clone, Debug, Default)]
-pub struct Casters {
-    pub props: Vec<(PropKind, Footprint)>,
-    pub character: Option<CharacterBound>,
-}
-
-impl Casters {
-    pub fn set_prop(&mut self, kind: PropKind, model: &Model) {
-        self.props.retain(|(k, _)| *k != kind);
-        if casts(kind) {
-            if let Some(f) = Footprint::of(model) {
-                self.props.push((kind, f));
-            }
-        }
-    }
-
-    pub fn any(&self) -> bool {
-        self.character.is_some() || !self.props.is_empty()
-    }
+/// The footprint of the loaded props of `kind`, if that kind casts.
+fn footprint(props: &[PropGpu], kind: PropKind) -> Option<&Footprint> {
+    let prop = props.iter().find(|p| p.kind == kind && casts(kind))?;
+    prop.footprint.as_ref()
 }
 
 /// The composed WGSL of the blob shader (`split`: the subsurface frame's two targets).
@@ -178,12 +116,11 @@ pub struct BlobsPass {
     pipeline: wgpu::RenderPipeline,
     /// For frames with the subsurface pass.
     split: Option<wgpu::RenderPipeline>,
-    instances: wgpu::Buffer,
+    /// One per prepared frame's copy, with what it holds.
+    instances: [wgpu::Buffer; FRAMES_PREPARED],
+    uploaded: [Vec<Blob>; FRAMES_PREPARED],
     /// Slot 0: the character's blob; then the props'. Capacity [`MAX_BLOBS`], never grown.
     staged: Vec<Blob>,
-    uploaded: Vec<Blob>,
-    /// Whether the blobs are drawn (the pass stays built when they are switched off).
-    pub enabled: bool,
 }
 
 impl BlobsPass {
@@ -199,72 +136,67 @@ impl BlobsPass {
             alpha: wgpu::BlendComponent::REPLACE,
         };
         // Colour only: alpha is the subsurface marker (and the output's coverage).
-        let shade = |format| {
-            Some(wgpu::ColorTargetState {
-                format,
-                blend: Some(multiply),
-                write_mask: wgpu::ColorWrites::COLOR,
-            })
+        let shade = wgpu::ColorTargetState {
+            format: ctx.format,
+            blend: Some(multiply),
+            write_mask: wgpu::ColorWrites::COLOR,
+        };
+        let untouched = wgpu::ColorTargetState {
+            format: ctx.format,
+            blend: None,
+            write_mask: wgpu::ColorWrites::empty(),
         };
         let build = |split: bool| {
             let module = wgsl_module(device, "blob shadow", shader_source(split));
-            let untouched = Some(wgpu::ColorTargetState {
-                format: SPLIT_FORMAT,
-                blend: None,
-                write_mask: wgpu::ColorWrites::empty(),
-            });
-            let targets = if split {
-                vec![shade(SPLIT_FORMAT), untouched.clone(), untouched]
-            } else {
-                vec![shade(ctx.format)]
-            };
+            let targets = scene_targets(ctx.format, split, shade.clone(), untouched.clone());
             pipeline(ctx.pipelines(), &layout, &module, &targets)
         };
-        let instances = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("blob shadows"),
-            size: (MAX_BLOBS * std::mem::size_of::<Blob>()) as u64,
-            usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
+        let instances = per_frame(|_| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("blob shadows"),
+                size: (MAX_BLOBS * std::mem::size_of::<Blob>()) as u64,
+                usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            })
         });
         let mut staged = Vec::with_capacity(MAX_BLOBS);
         staged.push(Blob::default());
         Self {
             pipeline: build(false),
-            split: ctx.set.needs_subsurface_pass().then(|| build(true)),
+            split: ctx.split().then(|| build(true)),
             instances,
             staged,
-            uploaded: Vec::with_capacity(MAX_BLOBS),
-            enabled: true,
+            uploaded: per_frame(|_| Vec::with_capacity(MAX_BLOBS)),
         }
     }
 
-    /// Stages the casting props' blobs of `instances`.
-    fn stage_props(&mut self, casters: &Casters, instances: &[PropInstance]) {
+    /// Stages the blobs of `instances` whose kind casts (of the props loaded, `props`).
+    fn stage_props(&mut self, props: &[PropGpu], instances: &[PropInstance]) {
         self.staged.truncate(1);
         for i in instances {
             if self.staged.len() == MAX_BLOBS {
                 break;
             }
-            if let Some((_, f)) = casters.props.iter().find(|(k, _)| *k == i.kind) {
+            if let Some(f) = footprint(props, i.kind) {
                 self.staged.push(Blob::prop(f, i.transform));
             }
         }
     }
 
-    /// Uploads every staged blob if any changed; returns the uploads (0 or 1). A run moves
-    /// the runner every frame but the props only now and then: then only the character's
-    /// slot is written. No allocation: the buffers were reserved at load.
-    fn upload(&mut self, queue: &wgpu::Queue) -> u32 {
-        if self.staged == self.uploaded {
+    /// Uploads the staged blobs into `copy` if it holds others; returns the uploads (0 or
+    /// 1). A run moves the runner every frame but the props only now and then: then only the
+    /// character's slot is written. No allocation: the buffers were reserved at load.
+    fn upload(&mut self, queue: &wgpu::Queue, copy: usize) -> u32 {
+        let uploaded = &mut self.uploaded[copy];
+        if self.staged == *uploaded {
             return 0;
         }
-        let props_same =
-            self.uploaded.len() == self.staged.len() && self.uploaded[1..] == self.staged[1..];
+        let props_same = uploaded.len() == self.staged.len() && uploaded[1..] == self.staged[1..];
         let upload = if props_same { 1 } else { self.staged.len() };
-        self.uploaded.clear();
-        self.uploaded.extend_from_slice(&self.staged);
+        uploaded.clear();
+        uploaded.extend_from_slice(&self.staged);
         queue.write_buffer(
-            &self.instances,
+            &self.instances[copy],
             0,
             bytemuck::cast_slice(&self.staged[..upload]),
         );
@@ -272,23 +204,31 @@ impl BlobsPass {
     }
 
     /// The blobs a frame draws: the props' and, when the subject is drawn, the character's.
-    fn range(&self, frame: &PreparedFrame) -> std::ops::Range<u32> {
+    fn range(frame: &PreparedFrame) -> std::ops::Range<u32> {
         let first = if frame.subject.is_some() { 0 } else { 1 };
-        first..(self.uploaded.len() as u32).max(first)
+        let staged = frame.pass(<Self as super::Slot>::SLOT).steps;
+        first..staged.max(first)
     }
+}
+
+/// The blobs, multiplied into the scene's floor.
+impl Declared for BlobsPass {
+    const ACCESS: Access = Access {
+        creates: &[],
+        reads: &[],
+        writes: &[Target::Scene],
+    };
 }
 
 impl Pass for BlobsPass {
     fn build(ctx: &BuildCtx) -> Option<Self> {
-        ctx.blobs.then(|| Self::new(ctx))
+        let something_casts = ctx.character || ctx.prop_kinds().any(casts);
+        (ctx.wanted::<Self>() && something_casts).then(|| Self::new(ctx))
     }
 
-    fn stage(&self) -> Stage {
-        Stage::Scene
-    }
-
-    /// Stages the subject's blob where it was placed and the props' where the frame placed
-    /// them; runs when switched on in a frame with props (the blobs lie on the floor).
+    /// Stages the subject's blob where it is placed and the props' where the frame placed
+    /// them; runs when switched on in a frame with props (the blobs lie on the floor);
+    /// `steps`: the blobs staged.
     fn prepare(
         &mut self,
         queue: &wgpu::Queue,
@@ -296,15 +236,17 @@ impl Pass for BlobsPass {
         frame: &mut PreparedFrame,
         res: &Resources,
     ) -> PassFrame {
-        if res.casters.character.is_some() {
-            self.staged[0] = Blob::character(&CHARACTER, res.subjects.world);
+        if let Some(subject) = &frame.subject {
+            self.staged[0] = Blob::character(&CHARACTER, subject.world);
         }
-        if let Some(placed) = packet.props {
-            self.stage_props(&res.casters, placed);
+        self.stage_props(&res.props, packet.props);
+        frame.uploads += self.upload(queue, frame.copy);
+        let staged = self.staged.len() as u32;
+        let first = u32::from(frame.subject.is_none());
+        PassFrame {
+            runs: frame.draw.props && staged > first,
+            steps: staged,
         }
-        frame.uploads += self.upload(queue);
-        let runs = self.enabled && frame.draw.props && !self.range(frame).is_empty();
-        PassFrame { runs, steps: 0 }
     }
 
     /// The blobs, blended over the floor and depth-tested against everything.
@@ -320,8 +262,8 @@ impl Pass for BlobsPass {
             (None, _) => &self.pipeline,
         };
         pass.set_pipeline(pipeline);
-        pass.set_vertex_buffer(0, self.instances.slice(..));
-        pass.draw(0..6, self.range(frame));
+        pass.set_vertex_buffer(0, self.instances[frame.copy].slice(..));
+        pass.draw(0..6, Self::range(frame));
         Drawn::calls(1)
     }
 }

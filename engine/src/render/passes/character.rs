@@ -10,54 +10,14 @@
 //! depth test. A model outside the scene's pipeline set is not drawn (and never compiled at
 //! run time).
 
-use super::{BuildCtx, Pass, Stage};
-use crate::asset::Model;
-use crate::render::material_gpu::Variant;
+use super::{Access, BuildCtx, Declared, Pass, Target};
+use crate::render::material_gpu::{standard_source, StandardKey};
 use crate::render::mesh::vertex_layout;
-use crate::render::passes::subsurface::SPLIT_FORMAT;
 use crate::render::pipelines::{pipeline_layout, pipeline_with, wgsl_module, Surfaces};
 use crate::render::prepared::{Drawn, PassFrame, PreparedFrame};
 use crate::render::resources::Resources;
-use crate::scene::{FramePacket, Role, Roles};
-use crate::shader::{compose, ShaderDefs};
-
-/// A standard material's pipeline: its variant and whether it has a normal map.
-pub type StandardKey = (Variant, bool);
-
-/// The standard pipelines `model` drawn as `roles` needs.
-pub fn standard_keys(model: &Model, roles: &Roles) -> Vec<StandardKey> {
-    let mut keys: Vec<StandardKey> = model
-        .meshes
-        .iter()
-        .flat_map(|m| &m.primitives)
-        .filter(|p| roles.role(p.material) == Role::Standard)
-        .map(|p| {
-            let material = p.material.and_then(|i| model.materials.get(i));
-            let mapped = material.and_then(|m| m.normal_texture).is_some();
-            (Variant::of(material), mapped)
-        })
-        .collect();
-    keys.sort();
-    keys.dedup();
-    keys
-}
-
-/// The composed WGSL of a standard part's pipeline.
-pub fn standard_source((variant, mapped): StandardKey, split: bool) -> String {
-    let mut defs = ShaderDefs::new().flag("STANDARD");
-    for (on, flag) in [
-        (mapped, "NORMAL_MAP"),
-        (variant.mask, "ALPHA_MASK"),
-        (variant.blend, "ALPHA_BLEND"),
-        (variant.double_sided, "DOUBLE_SIDED"),
-        (split, "SCREEN_SPACE"),
-    ] {
-        if on {
-            defs = defs.flag(flag);
-        }
-    }
-    compose("character", &defs).expect("built-in shaders compose (checked by tests)")
-}
+use crate::render::targets::scene_targets;
+use crate::scene::{FramePacket, Role};
 
 struct Standard {
     key: StandardKey,
@@ -79,38 +39,43 @@ impl CharacterPass {
 }
 
 /// The colour targets of a standard part's pipeline: opaque, or blended over what is behind
-/// it (straight alpha into the output; premultiplied into the subsurface frame's colour
-/// target, whose alpha — the skin marker — and other targets it leaves).
+/// it (straight alpha into the output; premultiplied into the split scene's colour target,
+/// whose alpha — the skin marker — and other targets it leaves).
 fn standard_targets(
     format: wgpu::TextureFormat,
     blend: bool,
     split: bool,
 ) -> Vec<Option<wgpu::ColorTargetState>> {
-    let target = |format, blend, write_mask| {
-        Some(wgpu::ColorTargetState {
-            format,
-            blend,
-            write_mask,
-        })
+    let state = |blend, write_mask| wgpu::ColorTargetState {
+        format,
+        blend,
+        write_mask,
     };
-    match (split, blend) {
-        (false, false) => vec![target(format, None, wgpu::ColorWrites::ALL)],
-        (false, true) => vec![target(
-            format,
-            Some(wgpu::BlendState::ALPHA_BLENDING),
-            wgpu::ColorWrites::ALL,
-        )],
-        (true, false) => vec![target(SPLIT_FORMAT, None, wgpu::ColorWrites::ALL); 3],
-        (true, true) => vec![
-            target(
-                SPLIT_FORMAT,
+    let all = wgpu::ColorWrites::ALL;
+    let (first, rest) = match (blend, split) {
+        (false, _) => (state(None, all), state(None, all)),
+        (true, false) => (
+            state(Some(wgpu::BlendState::ALPHA_BLENDING), all),
+            state(None, all),
+        ),
+        (true, true) => (
+            state(
                 Some(wgpu::BlendState::PREMULTIPLIED_ALPHA_BLENDING),
                 wgpu::ColorWrites::COLOR,
             ),
-            target(SPLIT_FORMAT, None, wgpu::ColorWrites::empty()),
-            target(SPLIT_FORMAT, None, wgpu::ColorWrites::empty()),
-        ],
-    }
+            state(None, wgpu::ColorWrites::empty()),
+        ),
+    };
+    scene_targets(format, split, first, rest)
+}
+
+/// The subject, lit (shadowed, its shadow filtered by the penumbra map), into the scene.
+impl Declared for CharacterPass {
+    const ACCESS: Access = Access {
+        creates: &[],
+        reads: &[Target::ShadowMap, Target::PenumbraMap],
+        writes: &[Target::Scene],
+    };
 }
 
 impl Pass for CharacterPass {
@@ -126,7 +91,7 @@ impl Pass for CharacterPass {
                 Some(&ctx.layouts.material),
             ],
         );
-        let splits: &[bool] = if ctx.set.needs_subsurface_pass() {
+        let splits: &[bool] = if ctx.split() {
             &[false, true]
         } else {
             &[false]
@@ -167,10 +132,6 @@ impl Pass for CharacterPass {
             .any(|k| !self.standard.iter().any(|s| s.key == *k))
     }
 
-    fn stage(&self) -> Stage {
-        Stage::Scene
-    }
-
     /// Runs when the frame draws a subject.
     fn prepare(
         &mut self,
@@ -179,7 +140,9 @@ impl Pass for CharacterPass {
         frame: &mut PreparedFrame,
         res: &Resources,
     ) -> PassFrame {
-        let runs = frame.subject.is_some() && res.subjects.active().is_some();
+        let runs = frame
+            .subject
+            .is_some_and(|d| res.subjects.get(d.slot).is_some());
         PassFrame { runs, steps: 0 }
     }
 
@@ -189,7 +152,10 @@ impl Pass for CharacterPass {
         res: &Resources,
         pass: &mut wgpu::RenderPass<'_>,
     ) -> Drawn {
-        let (Some(subject), Some(drawn)) = (res.subjects.active(), frame.subject) else {
+        let Some(drawn) = frame.subject else {
+            return Drawn::default();
+        };
+        let Some(subject) = res.subjects.get(drawn.slot) else {
             return Drawn::default();
         };
         let Some(group) = res.models.params_group(drawn.shading) else {
@@ -214,7 +180,7 @@ impl Pass for CharacterPass {
                 };
                 let Some(pipeline) = pipeline else { continue };
                 pass.set_pipeline(pipeline);
-                gpu.draw_part(pass, part, true);
+                gpu.draw_part(pass, part, true, frame.copy);
                 out.draw_calls += 1;
                 out.triangles += part.triangles;
             }

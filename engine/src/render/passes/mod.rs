@@ -1,15 +1,21 @@
-//! The frame's passes, one module each, in the order a frame records them (the rows of
-//! [`passes!`] below). A pass holds its own pipelines and bind groups and reads everything
-//! else from the renderer's [`Resources`]; it is built only where the scene can reach what it
-//! draws for ([`Pass::build`] returns `None` otherwise: no pipeline, no bind group), decides in
-//! [`Pass::prepare`] whether it runs this frame and writes its constants, and records in one
-//! place — [`Pass::encode`] for a pass of its own before the scene ([`Stage::Light`]),
+//! The frame's passes, one module each, and their table (the rows of [`passes!`] below: the
+//! only place that lists them). A pass holds its own pipelines and bind groups and reads
+//! everything else from the renderer's [`Resources`]; it declares the targets it creates,
+//! reads and writes ([`Declared::ACCESS`]), from which the frame graph (`graph.rs`) derives
+//! where it records ([`Stage`]), the frame's order ([`frame_order`]) and the transient
+//! targets made for the frame's size. It is built only where the scene can reach what it
+//! draws for ([`Pass::build`] returns `None` otherwise: no pipeline, no bind group), decides
+//! in [`Pass::prepare`] whether it runs this frame and writes its constants, and records in
+//! one place — [`Pass::encode`] for a pass of its own before the scene ([`Stage::Light`]),
 //! [`Pass::draw`] into the scene's pass ([`Stage::Scene`]) or the frame's last pass
 //! ([`Stage::Last`]), which resolves into the output.
 //!
 //! A new pass is its module plus its row: the row gives it a field in [`Passes`], a slot in
-//! every frame's [`PassFrame`]s and [`RenderStats::passes`], its place in the frame and its
-//! name in `bench frame` (`tests/render/adding_a_pass.rs` proves it for every row).
+//! every frame's [`PassFrame`]s and [`RenderStats::passes`], its name in `bench frame`, and
+//! its declaration its place in the frame (`tests/render/adding_a_pass.rs` proves it for
+//! every row). An optional pass (one a renderer draws only when asked: the blob shadows, the
+//! UI) is asked for by its row's name ([`PassId`]: `Renderer::enable(gpu, PassId::blobs)`),
+//! which its `build` reads ([`BuildCtx::wanted`]).
 
 pub mod blobs;
 pub mod character;
@@ -20,24 +26,18 @@ pub mod shadow_map;
 pub mod subsurface;
 pub mod ui;
 
+use std::sync::OnceLock;
+
+use super::graph;
 use super::layouts::Layouts;
 use super::light_maps::LightMaps;
+use super::material_gpu::StandardKey;
 use super::pipelines::{PipelineDevice, PipelineSet};
 use super::prepared::{Drawn, PassFrame, PreparedFrame, RenderStats};
 use super::resources::Resources;
-use crate::scene::FramePacket;
+use crate::scene::{FramePacket, PropKind};
 
-/// Where a pass records.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Stage {
-    /// Before the scene, in passes of its own (the light's maps).
-    Light,
-    /// Inside the scene's pass: into the output, or the subsurface targets.
-    Scene,
-    /// Inside the frame's last pass, which resolves into the output (in a frame of one pass,
-    /// the scene's, after the scene's draws).
-    Last,
-}
+pub use super::graph::{Access, Stage, Target};
 
 /// What a pass is built from: the device (and the pipeline cache its pipelines pass through),
 /// the renderer's layouts and output format, the shading models the scene can reach, and
@@ -54,17 +54,37 @@ pub struct BuildCtx<'a> {
     pub light_maps: Option<&'a LightMaps>,
     /// A measurement scene's shadow-only occluder is set.
     pub occluder: bool,
-    /// Props are loaded.
-    pub props: bool,
-    /// Blob shadows are asked for and something casts one.
-    pub blobs: bool,
-    /// The UI is drawn (the game).
-    pub ui: bool,
+    /// A character is loaded.
+    pub character: bool,
+    /// Which prop kinds are loaded ([`PropKind::ALL`] order).
+    pub props: [bool; PropKind::ALL.len()],
+    /// The optional passes asked for (table order).
+    pub wanted: [bool; PASS_COUNT],
     /// The standard materials' pipelines the loaded subjects need.
-    pub standard: &'a [character::StandardKey],
+    pub standard: &'a [StandardKey],
 }
 
 impl<'a> BuildCtx<'a> {
+    /// Whether the optional pass `P` was asked for.
+    pub fn wanted<P: Slot>(&self) -> bool {
+        self.wanted[P::SLOT]
+    }
+
+    /// Whether a pass drawing into the scene needs its split variant (the scene can reach a
+    /// pass that reads [`Target::Split`]).
+    pub fn split(&self) -> bool {
+        self.set.needs_subsurface_pass()
+    }
+
+    /// The prop kinds loaded.
+    pub fn prop_kinds(&self) -> impl Iterator<Item = PropKind> + '_ {
+        PropKind::ALL
+            .iter()
+            .zip(self.props)
+            .filter(|(_, loaded)| *loaded)
+            .map(|(k, _)| *k)
+    }
+
     /// What the pass's pipelines are made with.
     pub fn pipelines(&self) -> PipelineDevice<'a> {
         PipelineDevice {
@@ -86,8 +106,6 @@ pub trait Pass {
     fn stale(&self, _ctx: &BuildCtx) -> bool {
         false
     }
-
-    fn stage(&self) -> Stage;
 
     /// Whether it runs in `frame`, with its constants written; it may complete the frame
     /// (the frame uniform's members it owns; `uploads`).
@@ -128,18 +146,26 @@ pub trait Slot {
     const SLOT: usize;
 }
 
-/// Declares the passes in frame order: `name: Type,` with the type in the module `name`.
+/// What a pass does with the frame's targets (see the module docs).
+pub trait Declared {
+    const ACCESS: Access;
+}
+
+/// Declares the passes: `name: Type,` with the type in the module `name` (the frame's order
+/// comes from their declarations).
 macro_rules! passes {
     ($( $(#[$doc:meta])* $name:ident: $ty:ident, )+) => {
-        /// The passes a renderer has, in frame order; `None`: not built (nothing in the
-        /// scene needs it).
+        /// The passes a renderer has; `None`: not built (nothing in the scene needs it).
         #[derive(Default)]
         pub struct Passes {
             $( $(#[$doc])* pub $name: Option<$name::$ty>, )+
         }
 
-        /// Every pass's name, in frame order.
+        /// Every pass's name, in table order.
         pub const NAMES: [&str; PASS_COUNT] = [$(stringify!($name)),+];
+
+        /// Every pass's declaration, in table order.
+        pub const ACCESS: [Access; PASS_COUNT] = [$(<$name::$ty as Declared>::ACCESS),+];
 
         /// The number of passes.
         pub const PASS_COUNT: usize = [$(stringify!($name)),+].len();
@@ -148,6 +174,16 @@ macro_rules! passes {
         enum Slots { $($name),+ }
 
         $( impl Slot for $name::$ty { const SLOT: usize = Slots::$name as usize; } )+
+
+        /// A pass named by its row, for what asks for, switches or counts one
+        /// (`Renderer::enable`).
+        #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+        pub struct PassId(pub usize);
+
+        #[allow(non_upper_case_globals)]
+        impl PassId {
+            $( pub const $name: PassId = PassId(Slots::$name as usize); )+
+        }
 
         impl Passes {
             /// Every pass `ctx` needs.
@@ -165,7 +201,7 @@ macro_rules! passes {
                 )+
             }
 
-            /// Each built pass in frame order, by slot.
+            /// Each built pass in table order, by slot.
             pub fn each(&self) -> [Option<&dyn Pass>; PASS_COUNT] {
                 [$( self.$name.as_ref().map(|p| p as &dyn Pass) ),+]
             }
@@ -196,6 +232,23 @@ passes! {
     ui: UiPass,
 }
 
+/// The order the frame records the passes in (slots), derived once from their declarations
+/// ([`graph::order`]; `tests/render/adding_a_pass.rs` checks it is valid).
+pub fn frame_order() -> &'static [usize; PASS_COUNT] {
+    static ORDER: OnceLock<[usize; PASS_COUNT]> = OnceLock::new();
+    ORDER.get_or_init(|| {
+        graph::order(&ACCESS).unwrap_or_else(|| {
+            log::error!("the passes' declarations contradict each other: table order");
+            std::array::from_fn(|i| i)
+        })
+    })
+}
+
+/// Where pass `slot` records.
+pub fn stage(slot: usize) -> Stage {
+    ACCESS[slot].stage()
+}
+
 impl Passes {
     /// Runs `prepare` of every built pass in frame order, recording what each does.
     pub fn prepare(
@@ -205,8 +258,9 @@ impl Passes {
         frame: &mut PreparedFrame,
         res: &Resources,
     ) {
-        for (slot, pass) in self.each_mut().into_iter().enumerate() {
-            frame.passes[slot] = match pass {
+        let mut each = self.each_mut();
+        for &slot in frame_order() {
+            frame.passes[slot] = match each[slot].as_mut() {
                 Some(p) => p.prepare(queue, packet, frame, res),
                 None => PassFrame::default(),
             };
@@ -240,17 +294,22 @@ impl Passes {
         }
     }
 
-    /// The built passes of `stage` that run in `frame`, with their slots.
+    /// The built passes of `stage` that run in `frame`, in frame order, with their slots.
     fn running<'s>(
         &'s self,
         frame: &PreparedFrame,
         stage: Stage,
     ) -> impl Iterator<Item = (usize, &'s dyn Pass)> {
         let runs = frame.passes.map(|p| p.runs);
-        self.each()
-            .into_iter()
-            .enumerate()
-            .filter_map(move |(slot, p)| Some((slot, p?)))
-            .filter(move |(slot, p)| runs[*slot] && p.stage() == stage)
+        let each = self.each();
+        frame_order()
+            .iter()
+            .filter(move |&&slot| runs[slot] && self::stage(slot) == stage)
+            .filter_map(move |&slot| Some((slot, each[slot]?)))
+    }
+
+    /// Whether a built pass creates the transient target `t` (made for the frame's size).
+    pub fn creates(&self, t: Target) -> bool {
+        graph::transient(&ACCESS, self.each().map(|p| p.is_some())).any(|x| x == t)
     }
 }

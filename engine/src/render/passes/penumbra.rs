@@ -7,26 +7,28 @@
 //! material carries it — also far beyond what a few filter taps reach.
 //!
 //! Built only where the scene reaches such a model; run only in frames that draw one with a
-//! shadow map. Cost: one seed pass (60 gathers and 180 slope tests per grid texel) and as
-//! many jump passes (nine loads each) as the material's reach needs — distances beyond
-//! [`REACH_MM`] are never read — over the grid: 128² for the game's 1024² map (4 jump
-//! passes), independent of the screen.
+//! shadow map. Cost: one seed pass (21 gathers and 108 slope tests per grid texel) and as
+//! many jump passes (nine loads each) as the material's reach needs — [`reach_for`]: a dozen
+//! diffusion lengths, at most [`REACH_MM`]; distances beyond are never read — over the grid:
+//! 128² for the game's 1024² map (skin1 over the whole runner: 2 jump passes; the showroom's
+//! close-up: 3), independent of the screen. Not run where even the subject's nearest pixels
+//! are wider than the material's spread ([`subject_resolves`]: the runner at the follow
+//! camera).
 
-use super::{BuildCtx, Pass, Stage};
+use super::{Access, BuildCtx, Declared, Pass, Target};
 use crate::render::layouts;
-use crate::render::light_maps::{LightMaps, PenumbraGrid};
+use crate::render::light_maps::{LightMaps, PenumbraGrid, PENUMBRA_FORMAT as FORMAT};
 use crate::render::pipelines::{pipeline_layout, wgsl_module};
-use crate::render::prepared::{Drawn, PassFrame, PreparedFrame};
+use crate::render::prepared::{per_frame, Drawn, PassFrame, PreparedFrame, FRAMES_PREPARED};
 use crate::render::resources::Resources;
-use crate::scene::FramePacket;
+use crate::scene::{FramePacket, SubjectPose};
 use crate::shader::uniforms::PenumbraUniform;
+use glam::{Mat4, Vec2, Vec3};
 
 /// Shadow-map texels per grid texel (per side), shared with the seed shader through `consts`.
 pub use crate::shader::uniforms::PENUMBRA_BLOCK as BLOCK;
 /// How far from an edge a distance is needed (mm): the edge-spread table's span.
 pub const REACH_MM: f32 = crate::shading::edge_spread::SPAN_MM as f32;
-/// The grid's texture format: seed uv, depth, valid.
-pub const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 /// The depth step that makes an edge, in metres along the light: at most 1 cm, and at most
 /// [`EDGE_GAP_TEXELS`] texel widths, so a caster a few millimetres above a finely mapped
 /// receiver (a blade over a measured medium, a finger over a palm) still has its edge. A step
@@ -59,12 +61,92 @@ pub fn steps(size: u32) -> impl Iterator<Item = u32> {
     std::iter::successors((first >= 1).then_some(first), |s| (*s > 1).then_some(s / 2))
 }
 
-/// The jump steps for a grid of `size` texels over a map `map_width_m` wide: the halvings
-/// from the first power of two that reaches [`REACH_MM`] down to 1.
-pub fn jump_steps(size: u32, map_width_m: f32) -> impl Iterator<Item = u32> {
+/// The jump steps for a grid of `size` texels over a map `map_width_m` wide, for distances
+/// up to `reach_mm` (at most [`REACH_MM`]): the halvings down to 1 from the first power of
+/// two k whose passes carry a seed far enough (k + k/2 + … + 1 = 2k − 1 texels).
+pub fn jump_steps(size: u32, map_width_m: f32, reach_mm: f32) -> impl Iterator<Item = u32> {
     let texel_mm = map_width_m * 1000.0 / size.max(1) as f32;
-    let reach = (REACH_MM / texel_mm.max(1e-6)).ceil().clamp(1.0, 1e6) as u32;
-    steps(size).filter(move |&s| s <= reach.next_power_of_two())
+    let reach_mm = reach_mm.clamp(0.0, REACH_MM);
+    let reach = (reach_mm / texel_mm.max(1e-6)).ceil().clamp(1.0, 1e6) as u32;
+    let first = (reach + 1).div_ceil(2).next_power_of_two();
+    steps(size).filter(move |&s| s <= first)
+}
+
+/// How far (mm) a material whose longest diffusion length is `diffusion_mm` needs the
+/// distance to an edge ([`edge_spread::reach_mm`](crate::shading::edge_spread::reach_mm)).
+pub fn reach_for(diffusion_mm: f32) -> f32 {
+    (crate::shading::edge_spread::REACH_LENGTHS as f32 * diffusion_mm).min(REACH_MM)
+}
+
+/// The world size (mm) of one pixel of a `viewport` seen through `view_proj` from `eye`, at
+/// `at` (across the line of sight); 0 where `at` is behind the eye or the view degenerate.
+pub fn pixel_mm(view_proj: Mat4, eye: Vec3, viewport: (u32, u32), at: Vec3) -> f32 {
+    let ray = at - eye;
+    let d = ray.length();
+    let across = ray
+        .cross(Vec3::Y)
+        .try_normalize()
+        .or(ray.cross(Vec3::X).try_normalize());
+    let Some(across) = across.filter(|_| d > 1e-6) else {
+        return 0.0;
+    };
+    let ndc = |p: Vec3| {
+        let c = view_proj * p.extend(1.0);
+        (c.w > 1e-9).then(|| Vec2::new(c.x, c.y) / c.w)
+    };
+    let step = 0.01 * d;
+    let half = 0.5 * Vec2::new(viewport.0 as f32, viewport.1 as f32);
+    match (ndc(at), ndc(at + across * step)) {
+        (Some(a), Some(b)) => {
+            let px = ((b - a) * half).length();
+            if px > 0.0 && px.is_finite() {
+                step * 1000.0 / px
+            } else {
+                0.0
+            }
+        }
+        _ => 0.0,
+    }
+}
+
+/// Whether the penumbra shows at this frame's scale: the light a material carries past a
+/// shadow's edge spreads over about its diffusion length; where a pixel at the subject is
+/// wider than that, the spread lies within the pixel at the edge (which the shadow test's ramp
+/// already blends), so the penumbra map would change nothing that can be seen.
+pub fn resolvable(diffusion_mm: f32, pixel_mm: f32) -> bool {
+    // (A pixel size that is not a number, or 0 behind the eye: drawn.)
+    pixel_mm.is_nan() || pixel_mm <= diffusion_mm
+}
+
+/// The sphere around `subject`'s bind-pose bounds (its meshes' boxes), placed: centre, radius.
+fn subject_sphere(subject: &SubjectPose) -> (Vec3, f32) {
+    let mut lo = Vec3::splat(f32::INFINITY);
+    let mut hi = Vec3::splat(f32::NEG_INFINITY);
+    for p in subject.model.meshes.iter().flat_map(|m| &m.primitives) {
+        lo = lo.min(p.bounds.min);
+        hi = hi.max(p.bounds.max);
+    }
+    if lo.x > hi.x {
+        return (subject.world.transform_point3(Vec3::ZERO), 0.0);
+    }
+    let half = subject.world.transform_vector3(0.5 * (hi - lo)).length();
+    (subject.world.transform_point3(0.5 * (lo + hi)), half)
+}
+
+/// Whether the subject's nearest part (its bounding sphere's point nearest the eye; the eye
+/// inside it: yes) resolves the spread of a material whose longest diffusion length is
+/// `diffusion_mm` ([`resolvable`]).
+pub fn subject_resolves(packet: &FramePacket, subject: &SubjectPose, diffusion_mm: f32) -> bool {
+    let (centre, radius) = subject_sphere(subject);
+    let view = &packet.view;
+    let to = centre - view.camera_pos;
+    let d = to.length();
+    if d <= radius || d <= 0.0 {
+        return true;
+    }
+    let nearest = view.camera_pos + to * ((d - radius) / d);
+    let px = pixel_mm(view.view_proj, view.camera_pos, packet.viewport, nearest);
+    resolvable(diffusion_mm, px)
 }
 
 /// The bind group layout of both passes.
@@ -110,11 +192,13 @@ pub struct PenumbraPass {
     seed: wgpu::RenderPipeline,
     jump: wgpu::RenderPipeline,
     uniforms: wgpu::Buffer,
-    /// Per pass (the seed, then one per possible jump): its bind groups reading grid target
-    /// 0 and grid target 1.
-    groups: Vec<[wgpu::BindGroup; 2]>,
-    /// The constants last written (steps, edge gap): unchanged ones are not written again.
-    written: Option<(u32, f32)>,
+    /// Per prepared frame's copy, per pass (the seed, then one per possible jump): its bind
+    /// groups reading grid target 0 and grid target 1.
+    groups: [Vec<[wgpu::BindGroup; 2]>; FRAMES_PREPARED],
+    /// The constants each copy holds (steps, edge gap): unchanged ones are not written again.
+    written: [Option<(u32, f32)>; FRAMES_PREPARED],
+    /// Passes per copy (the seed and every possible jump).
+    passes: u64,
 }
 
 impl PenumbraPass {
@@ -155,7 +239,7 @@ impl PenumbraPass {
         let passes = steps(size).count() + 1;
         let uniforms = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("penumbra passes"),
-            size: SLOT * passes as u64,
+            size: SLOT * (passes * FRAMES_PREPARED) as u64,
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
@@ -195,18 +279,31 @@ impl PenumbraPass {
                 ],
             })
         };
-        let groups = (0..passes as u64)
-            .map(|k| [group(k, &grid.targets[0]), group(k, &grid.targets[1])])
-            .collect();
+        let passes = passes as u64;
+        let groups = per_frame(|copy| {
+            (copy as u64 * passes..(copy as u64 + 1) * passes)
+                .map(|k| [group(k, &grid.targets[0]), group(k, &grid.targets[1])])
+                .collect()
+        });
         Self {
             size,
             seed: pipeline("fs_seed"),
             jump: pipeline("fs_jump"),
             uniforms,
             groups,
-            written: None,
+            written: [None; FRAMES_PREPARED],
+            passes,
         }
     }
+}
+
+/// The seed and jump passes read the shadow map and write the penumbra map's grid.
+impl Declared for PenumbraPass {
+    const ACCESS: Access = Access {
+        creates: &[],
+        reads: &[Target::ShadowMap],
+        writes: &[Target::PenumbraMap],
+    };
 }
 
 impl Pass for PenumbraPass {
@@ -226,31 +323,39 @@ impl Pass for PenumbraPass {
         grid.map(|g| g.size) != Some(self.size)
     }
 
-    fn stage(&self) -> Stage {
-        Stage::Light
-    }
-
-    /// Runs in frames with a shadow map that draw a model with the `penumbra` effect: as
-    /// many jump passes as reach [`REACH_MM`] over the map's width this frame.
+    /// Runs in frames with a shadow map that draw a model with the `penumbra` effect, where
+    /// the subject's pixels resolve its material's spread ([`subject_resolves`]): as many jump
+    /// passes as reach the material's [`reach_for`] over the map's width this frame.
     fn prepare(
         &mut self,
         queue: &wgpu::Queue,
-        _packet: &FramePacket,
+        packet: &FramePacket,
         frame: &mut PreparedFrame,
-        _res: &Resources,
+        res: &Resources,
     ) -> PassFrame {
         let reads = frame.draw.character
             && frame.subject.is_some()
             && frame.draw.shading.is_some_and(|m| m.effects().penumbra);
-        if !(frame.shadow.drawn && reads) {
+        let diffusion = res.models.diffusion_mm();
+        // Where the subject's pixels are wider than its material's spread, nothing to draw.
+        let shows = packet
+            .subject
+            .as_ref()
+            .is_none_or(|s| subject_resolves(packet, s, diffusion));
+        if !(frame.shadow.drawn && reads && shows) {
             return PassFrame::default();
         }
         let shadow = &frame.shadow;
         let gap = edge_gap_m(shadow.texel_m) * shadow.depth_per_m;
-        let jumps = jump_steps(self.size, shadow.width_m()).count() as u32;
-        if self.written != Some((jumps, gap)) {
+        let reach = reach_for(diffusion);
+        let jumps = jump_steps(self.size, shadow.width_m(), reach).count() as u32;
+        let copy = frame.copy;
+        if self.written[copy] != Some((jumps, gap)) {
+            // Every pass's constants in one write (each write stages a buffer of its own).
+            let mut slots = [0u8; SLOT as usize * MAX_PASSES];
             let first = std::iter::once(0);
-            let all = first.chain(jump_steps(self.size, shadow.width_m()));
+            let all = first.chain(jump_steps(self.size, shadow.width_m(), reach));
+            let mut passes = 0;
             for (k, step) in all.enumerate().take(MAX_PASSES) {
                 let jump = PenumbraUniform {
                     step: step as f32,
@@ -258,10 +363,15 @@ impl Pass for PenumbraPass {
                     edge_gap: gap,
                     _pad0: 0.0,
                 };
-                queue.write_buffer(&self.uniforms, k as u64 * SLOT, bytemuck::bytes_of(&jump));
-                frame.uploads += 1;
+                let at = k * SLOT as usize;
+                let bytes = bytemuck::bytes_of(&jump);
+                slots[at..at + bytes.len()].copy_from_slice(bytes);
+                passes = k + 1;
             }
-            self.written = Some((jumps, gap));
+            let at = copy as u64 * self.passes * SLOT;
+            queue.write_buffer(&self.uniforms, at, &slots[..passes * SLOT as usize]);
+            frame.uploads += 1;
+            self.written[copy] = Some((jumps, gap));
         }
         let u = &mut frame.uniform;
         u.penumbra_drawn = 1;
@@ -286,7 +396,7 @@ impl Pass for PenumbraPass {
         };
         let jumps = frame.pass(<Self as super::Slot>::SLOT).steps as usize;
         let mut target = jumps % 2;
-        for (k, groups) in self.groups.iter().take(jumps + 1).enumerate() {
+        for (k, groups) in self.groups[frame.copy].iter().take(jumps + 1).enumerate() {
             let seed = k == 0;
             if !seed {
                 target = 1 - target;
@@ -330,12 +440,43 @@ mod tests {
         assert_eq!(steps_of(256), vec![128, 64, 32, 16, 8, 4, 2, 1]);
         assert_eq!(steps_of(1), Vec::<u32>::new());
         assert_eq!(steps_of(5), vec![4, 2, 1]);
-        // The game's grid: 128 texels over ~2.1 m (16.4 mm each) need 8 texels of reach.
-        let jumps = |s: u32, w: f32| jump_steps(s, w).collect::<Vec<_>>();
+        // The game's grid: 128 texels over ~2.1 m (16.4 mm each) need 8 texels of the
+        // table's reach (steps 8 + 4 + 2 + 1 carry a seed 15 texels), 1.9 m 9 of them.
+        let jumps = |s: u32, w: f32| jump_steps(s, w, REACH_MM).collect::<Vec<_>>();
         assert_eq!(jumps(128, 2.1), vec![8, 4, 2, 1]);
-        assert_eq!(jumps(128, 1.9), vec![16, 8, 4, 2, 1]);
+        assert_eq!(jumps(128, 1.9), vec![8, 4, 2, 1]);
+        assert_eq!(jumps(128, 0.9), vec![16, 8, 4, 2, 1]);
         // A fine map reaches as far as its grid allows.
         assert_eq!(jumps(16, 0.01), steps_of(16));
+        // A material that carries light 40 mm needs 3 of the 16.4 mm texels: steps 2, 1.
+        assert_eq!(jump_steps(128, 2.1, 40.0).collect::<Vec<_>>(), vec![2, 1]);
+        // Every seed within the reach is carried: the steps sum to at least it.
+        for reach in [1.0, 10.0, 40.0, 100.0, 128.0] {
+            let texels = (reach / (2100.0 / 128.0) as f32).ceil() as u32;
+            let sum: u32 = jump_steps(128, 2.1, reach).sum();
+            assert!(sum >= texels, "{reach} mm: {sum} < {texels}");
+        }
+        // Never beyond the table's span.
+        assert_eq!(jump_steps(128, 2.1, 1e4).count(), jumps(128, 2.1).len());
         assert!(steps_of(1 << 16).len() < MAX_PASSES);
+    }
+
+    #[test]
+    fn a_pixel_is_measured_where_the_subject_stands() {
+        let eye = Vec3::new(0.0, 1.0, 4.0);
+        let view_proj = crate::camera::look_at(eye, Vec3::Y, 1.0, 16.0 / 9.0);
+        let near = pixel_mm(view_proj, eye, (1280, 720), Vec3::new(0.0, 1.0, 2.0));
+        let far = pixel_mm(view_proj, eye, (1280, 720), Vec3::new(0.0, 1.0, 0.0));
+        // Twice as far, twice as wide; halving the frame doubles it too.
+        assert!((far / near - 2.0).abs() < 0.01, "{near} {far}");
+        let small = pixel_mm(view_proj, eye, (640, 360), Vec3::new(0.0, 1.0, 0.0));
+        assert!((small / far - 2.0).abs() < 0.01, "{small} {far}");
+        // Behind the eye: no size (the penumbra is drawn).
+        assert_eq!(
+            pixel_mm(view_proj, eye, (1280, 720), Vec3::new(0.0, 1.0, 9.0)),
+            0.0
+        );
+        assert!(resolvable(3.7, 0.0) && resolvable(3.7, 2.0) && !resolvable(3.7, 6.0));
+        assert!(resolvable(3.7, f32::NAN));
     }
 }

@@ -1,23 +1,24 @@
 //! The props (floor tiles, walls, furniture, obstacles), instanced with the plain default-lit
 //! shader (`shaders/prop.wgsl`): each frame the placements a view can see are uploaded per
-//! kind (a kind whose visible instances did not change is not uploaded again) and drawn after
+//! kind into the frame's copy of its instance buffer (a copy that holds them already is not
+//! written again) and drawn after
 //! the subject — what stands on the floor first, then the floor, most of which lies behind
 //! them, so its hidden texels fail the early depth test. Built when props are loaded; the
 //! variant for frames with the subsurface pass (two linear targets) only where the scene can
 //! reach a screen-space model.
 
-use super::{BuildCtx, Pass, Stage};
+use super::{Access, BuildCtx, Declared, Pass, Target};
 use crate::camera::Frustum;
 use crate::render::layouts::Layouts;
 use crate::render::mesh::{instance_layout, vertex_layout};
 use crate::render::pipelines::{pipeline, pipeline_layout, targets, wgsl_module, PipelineDevice};
-use crate::render::prepared::{Drawn, PassFrame, PreparedFrame};
+use crate::render::prepared::{per_frame, Drawn, PassFrame, PreparedFrame, FRAMES_PREPARED};
 use crate::render::prop_gpu::MAX_INSTANCES;
 use crate::render::resources::Resources;
-use crate::scene::{FramePacket, PropInstance, PropKind};
+use crate::scene::{FramePacket, PropKind};
 use crate::shader::{compose, ShaderDefs};
 
-/// One kind's instances this frame.
+/// One kind's instances in one prepared frame's copy.
 struct Instances {
     buffer: wgpu::Buffer,
     /// What the buffer holds now (capacity reserved once).
@@ -28,10 +29,8 @@ pub struct PropsPass {
     pipeline: wgpu::RenderPipeline,
     /// For frames with the subsurface pass.
     split: Option<wgpu::RenderPipeline>,
-    /// One per kind, in [`PropKind::ALL`] order.
-    instances: Vec<Instances>,
-    /// The placements last handed over, before culling (capacity reserved once).
-    placed: Vec<PropInstance>,
+    /// Per prepared frame's copy, one per kind in [`PropKind::ALL`] order.
+    instances: [Vec<Instances>; FRAMES_PREPARED],
     /// Scratch for one kind's visible matrices.
     scratch: Vec<[[f32; 4]; 4]>,
 }
@@ -67,42 +66,45 @@ fn prop_pipeline(
     )
 }
 
+/// The props, lit and shadowed, into the scene.
+impl Declared for PropsPass {
+    const ACCESS: Access = Access {
+        creates: &[],
+        reads: &[Target::ShadowMap],
+        writes: &[Target::Scene],
+    };
+}
+
 impl Pass for PropsPass {
     fn build(ctx: &BuildCtx) -> Option<Self> {
-        if !ctx.props {
-            return None;
-        }
+        ctx.prop_kinds().next()?;
         let (device, layouts) = (ctx.device, ctx.layouts);
-        let instances = PropKind::ALL
-            .iter()
-            .map(|kind| Instances {
-                buffer: device.create_buffer(&wgpu::BufferDescriptor {
-                    label: Some(kind.file()),
-                    size: MAX_INSTANCES as u64 * 64,
-                    usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
-                    mapped_at_creation: false,
-                }),
-                uploaded: Vec::with_capacity(MAX_INSTANCES as usize),
-            })
-            .collect();
+        let instances = per_frame(|_| {
+            PropKind::ALL
+                .iter()
+                .map(|kind| Instances {
+                    buffer: device.create_buffer(&wgpu::BufferDescriptor {
+                        label: Some(kind.file()),
+                        size: MAX_INSTANCES as u64 * 64,
+                        usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
+                        mapped_at_creation: false,
+                    }),
+                    uploaded: Vec::with_capacity(MAX_INSTANCES as usize),
+                })
+                .collect()
+        });
         Some(Self {
             pipeline: prop_pipeline(ctx.pipelines(), layouts, ctx.format, false),
             split: ctx
-                .set
-                .needs_subsurface_pass()
+                .split()
                 .then(|| prop_pipeline(ctx.pipelines(), layouts, ctx.format, true)),
             instances,
-            placed: Vec::with_capacity(PropKind::ALL.len() * MAX_INSTANCES as usize),
             scratch: Vec::with_capacity(MAX_INSTANCES as usize),
         })
     }
 
-    fn stage(&self) -> Stage {
-        Stage::Scene
-    }
-
-    /// Takes the frame's placements (if it placed any) and uploads each kind's instances
-    /// inside the view; runs when the frame draws props and one is visible.
+    /// Uploads each kind's placements inside the view into the frame's copy; runs when the
+    /// frame draws props and one is visible.
     fn prepare(
         &mut self,
         queue: &wgpu::Queue,
@@ -110,17 +112,13 @@ impl Pass for PropsPass {
         frame: &mut PreparedFrame,
         res: &Resources,
     ) -> PassFrame {
-        if let Some(placed) = packet.props {
-            self.placed.clear();
-            let room = self.placed.capacity();
-            self.placed.extend(placed.iter().take(room));
-        }
         let frustum = Frustum::new(frame.view.view_proj);
         for (k, kind) in PropKind::ALL.iter().enumerate() {
             self.scratch.clear();
             if let Some(prop) = res.props.iter().find(|p| p.kind == *kind) {
                 self.scratch.extend(
-                    self.placed
+                    packet
+                        .props
                         .iter()
                         .filter(|i| i.kind == *kind && prop.visible(&frustum, &i.transform))
                         .take(MAX_INSTANCES as usize)
@@ -128,13 +126,13 @@ impl Pass for PropsPass {
                 );
             }
             frame.visible_props[k] = self.scratch.len() as u32;
-            let slot = &mut self.instances[k];
-            if slot.uploaded != self.scratch {
-                slot.uploaded.clear();
-                slot.uploaded.extend_from_slice(&self.scratch);
-                if !self.scratch.is_empty() {
-                    queue.write_buffer(&slot.buffer, 0, bytemuck::cast_slice(&self.scratch));
-                }
+            let slot = &mut self.instances[frame.copy][k];
+            // Written every frame it draws (a check against the copy, two frames old, would
+            // make the writes per frame follow how often the view's props change).
+            slot.uploaded.clear();
+            slot.uploaded.extend_from_slice(&self.scratch);
+            if !self.scratch.is_empty() {
+                queue.write_buffer(&slot.buffer, 0, bytemuck::cast_slice(&self.scratch));
                 frame.uploads += 1;
             }
         }
@@ -169,7 +167,8 @@ impl Pass for PropsPass {
             if count == 0 {
                 continue;
             }
-            pass.set_vertex_buffer(1, self.instances[k].buffer.slice(..count as u64 * 64));
+            let buffer = &self.instances[frame.copy][k].buffer;
+            pass.set_vertex_buffer(1, buffer.slice(..count as u64 * 64));
             drawn.draw_calls += prop.draw(pass, count);
             drawn.triangles += prop.triangles * count;
         }

@@ -5,7 +5,7 @@
 //! happens at the end of every fragment shader that writes here (`finish` in `common.wgsl`).
 
 use crate::render::prepared::PassCtx;
-use crate::render::targets::Targets;
+use crate::render::targets::depth_attachment;
 
 /// Which of the frame's timestamps a pass writes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -43,16 +43,4 @@ pub fn output_pass<'e>(
         occlusion_query_set: None,
         multiview_mask: None,
     })
-}
-
-/// The frame's depth target: cleared, never stored.
-pub fn depth_attachment(targets: &Targets) -> wgpu::RenderPassDepthStencilAttachment<'_> {
-    wgpu::RenderPassDepthStencilAttachment {
-        view: &targets.depth,
-        depth_ops: Some(wgpu::Operations {
-            load: wgpu::LoadOp::Clear(1.0),
-            store: wgpu::StoreOp::Discard,
-        }),
-        stencil_ops: None,
-    }
 }

@@ -4,13 +4,13 @@
 //! light's frustum is the frame's [`ShadowView`](crate::render::ShadowView); the map itself is
 //! one of the renderer's light maps (`light_maps.rs`). Built once something casts.
 
-use super::{BuildCtx, Pass, Stage};
+use super::{Access, BuildCtx, Declared, Pass, Target};
 use crate::render::layouts;
 use crate::render::light_maps::{depth_pass, SHADOW_FORMAT};
 use crate::render::mesh::vertex_layout;
 use crate::render::pipelines::PipelineDevice;
 use crate::render::pipelines::{pipeline_layout, wgsl_module};
-use crate::render::prepared::{Drawn, PassFrame, PreparedFrame};
+use crate::render::prepared::{per_frame, Drawn, PassFrame, PreparedFrame, FRAMES_PREPARED};
 use crate::render::resources::Resources;
 use crate::scene::FramePacket;
 use crate::shader::uniforms::CasterUniform;
@@ -25,8 +25,9 @@ pub struct ShadowMapPass {
     skinned: wgpu::RenderPipeline,
     /// Where a measurement scene sets an occluder.
     occluder: Option<wgpu::RenderPipeline>,
-    caster_buffer: wgpu::Buffer,
-    caster_group: wgpu::BindGroup,
+    /// The light's matrix, one per prepared frame's copy.
+    caster_buffers: [wgpu::Buffer; FRAMES_PREPARED],
+    caster_groups: [wgpu::BindGroup; FRAMES_PREPARED],
 }
 
 fn depth_only(
@@ -69,6 +70,15 @@ fn depth_only(
             multiview_mask: None,
             cache: dev.cache,
         })
+}
+
+/// The subject and the occluder drawn depth-only into the light's depth map.
+impl Declared for ShadowMapPass {
+    const ACCESS: Access = Access {
+        creates: &[],
+        reads: &[],
+        writes: &[Target::ShadowMap],
+    };
 }
 
 impl Pass for ShadowMapPass {
@@ -114,34 +124,34 @@ impl Pass for ShadowMapPass {
                 })],
             )
         });
-        let caster_buffer = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("shadow caster"),
-            size: std::mem::size_of::<CasterUniform>() as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
+        let caster_buffers = per_frame(|_| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("shadow caster"),
+                size: std::mem::size_of::<CasterUniform>() as u64,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            })
         });
-        let caster_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("shadow caster"),
-            layout: &caster_layout,
-            entries: &[wgpu::BindGroupEntry {
-                binding: 0,
-                resource: caster_buffer.as_entire_binding(),
-            }],
+        let caster_groups = per_frame(|k| {
+            device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("shadow caster"),
+                layout: &caster_layout,
+                entries: &[wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: caster_buffers[k].as_entire_binding(),
+                }],
+            })
         });
         Some(Self {
             skinned,
             occluder,
-            caster_buffer,
-            caster_group,
+            caster_buffers,
+            caster_groups,
         })
     }
 
     fn stale(&self, ctx: &BuildCtx) -> bool {
         ctx.occluder && self.occluder.is_none()
-    }
-
-    fn stage(&self) -> Stage {
-        Stage::Light
     }
 
     /// Runs when the frame's shadow view says a map is drawn; writes the light's matrix.
@@ -157,7 +167,8 @@ impl Pass for ShadowMapPass {
             let caster = CasterUniform {
                 view_proj: frame.shadow.view_proj,
             };
-            queue.write_buffer(&self.caster_buffer, 0, bytemuck::bytes_of(&caster));
+            let buffer = &self.caster_buffers[frame.copy];
+            queue.write_buffer(buffer, 0, bytemuck::bytes_of(&caster));
             frame.uploads += 1;
         }
         PassFrame { runs, steps: 0 }
@@ -174,12 +185,12 @@ impl Pass for ShadowMapPass {
             return Drawn::default();
         };
         let mut pass = depth_pass(encoder, &maps.shadow_target, "shadow map");
-        pass.set_bind_group(0, &self.caster_group, &[]);
+        pass.set_bind_group(0, &self.caster_groups[frame.copy], &[]);
         let mut drawn = Drawn::default();
-        let subject = res.subjects.active().filter(|_| frame.draw.character);
+        let subject = frame.subject.and_then(|d| res.subjects.get(d.slot));
         if let (Some(subject), true) = (subject, res.subject_casts) {
             pass.set_pipeline(&self.skinned);
-            drawn.draw_calls += subject.gpu.draw(&mut pass);
+            drawn.draw_calls += subject.gpu.draw(&mut pass, frame.copy);
         }
         if let (Some(o), Some(pipeline)) = (&res.occluder, &self.occluder) {
             pass.set_pipeline(pipeline);

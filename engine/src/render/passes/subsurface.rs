@@ -5,109 +5,25 @@
 //! full-screen triangle gathers the spread irradiance ring by ring, adds it, tone-maps and
 //! resolves into the output. Frames with other models have one pass.
 //!
-//! The targets are the renderer's ([`SplitTargets`], made for the frame's size by
-//! `Renderer::resize`); this pass keeps one bind group per screen-space model (its kernel,
-//! the resolved targets), made again when they are.
+//! It declares that it creates the split targets ([`Target::Split`]: `targets::SplitTargets`),
+//! so the renderer makes them for the frame's size (`Renderer::resize`); this pass keeps one
+//! bind group per screen-space model (its kernel, the resolved targets), made again when
+//! they are.
 
-use super::{BuildCtx, Pass, Stage};
+use super::{Access, BuildCtx, Declared, Pass, Target};
 use crate::render::layouts::Layouts;
-use crate::render::passes::resolve;
 use crate::render::pipelines::PipelineDevice;
 use crate::render::pipelines::{pipeline_layout, wgsl_module};
-use crate::render::prepared::{Drawn, PassCtx, PassFrame, PreparedFrame};
+use crate::render::prepared::{Drawn, PassFrame, PreparedFrame};
 use crate::render::resources::Resources;
 use crate::render::targets::{depth_state, multisample, MSAA_SAMPLES};
 use crate::scene::FramePacket;
 use crate::shader::{compose, ShaderDefs};
 use crate::shading::ShadingModel;
 
-/// Format of both intermediate targets (linear radiance; irradiance and pixel size in mm).
-pub const SPLIT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
-
 /// The composed gather shader.
 pub fn shader_source() -> String {
     compose("sss_pass", &ShaderDefs::new()).expect("built-in shaders compose")
-}
-
-/// The scene's three targets in a frame with the subsurface pass, for one size: radiance that
-/// stays (with the skin marker), irradiance to spread (with the pixel's size), the exit
-/// factor per channel.
-pub struct SplitTargets {
-    pub size: (u32, u32),
-    pub colour_msaa: wgpu::TextureView,
-    pub spread_msaa: wgpu::TextureView,
-    pub exit_msaa: wgpu::TextureView,
-    pub colour: wgpu::TextureView,
-    pub spread: wgpu::TextureView,
-    pub exit: wgpu::TextureView,
-}
-
-impl SplitTargets {
-    pub fn new(device: &wgpu::Device, (width, height): (u32, u32)) -> Self {
-        let make = |label, samples, usage| {
-            device
-                .create_texture(&wgpu::TextureDescriptor {
-                    label: Some(label),
-                    size: wgpu::Extent3d {
-                        width,
-                        height,
-                        depth_or_array_layers: 1,
-                    },
-                    mip_level_count: 1,
-                    sample_count: samples,
-                    dimension: wgpu::TextureDimension::D2,
-                    format: SPLIT_FORMAT,
-                    usage,
-                    view_formats: &[],
-                })
-                .create_view(&Default::default())
-        };
-        let attach = wgpu::TextureUsages::RENDER_ATTACHMENT;
-        let sampled = attach | wgpu::TextureUsages::TEXTURE_BINDING;
-        Self {
-            size: (width, height),
-            colour_msaa: make("subsurface colour msaa", MSAA_SAMPLES, attach),
-            spread_msaa: make("subsurface spread msaa", MSAA_SAMPLES, attach),
-            exit_msaa: make("subsurface exit msaa", MSAA_SAMPLES, attach),
-            colour: make("subsurface colour", 1, sampled),
-            spread: make("subsurface spread", 1, sampled),
-            exit: make("subsurface exit", 1, sampled),
-        }
-    }
-
-    /// Opens the scene's pass into these targets: all cleared, alpha −1 in the colour target
-    /// telling the gather that nothing was drawn there, resolved at its end.
-    pub fn scene_pass<'e>(
-        &self,
-        ctx: &'e mut PassCtx<'_>,
-        clear: wgpu::Color,
-    ) -> wgpu::RenderPass<'e> {
-        let clear = wgpu::Color { a: -1.0, ..clear };
-        let attachment = |view, resolve| {
-            Some(wgpu::RenderPassColorAttachment {
-                view,
-                depth_slice: None,
-                resolve_target: Some(resolve),
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(clear),
-                    store: wgpu::StoreOp::Discard,
-                },
-            })
-        };
-        let timer = ctx.timer.map(|t| t.begin_writes());
-        ctx.encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("scene (subsurface)"),
-            color_attachments: &[
-                attachment(&self.colour_msaa, &self.colour),
-                attachment(&self.spread_msaa, &self.spread),
-                attachment(&self.exit_msaa, &self.exit),
-            ],
-            depth_stencil_attachment: Some(resolve::depth_attachment(ctx.targets)),
-            timestamp_writes: timer,
-            occlusion_query_set: None,
-            multiview_mask: None,
-        })
-    }
 }
 
 fn entry(binding: u32, ty: wgpu::BindingType) -> wgpu::BindGroupLayoutEntry {
@@ -208,15 +124,20 @@ impl SubsurfacePass {
     }
 }
 
+/// The split targets, made for the frame's size, read by the gather, which writes the
+/// output.
+impl Declared for SubsurfacePass {
+    const ACCESS: Access = Access {
+        creates: &[Target::Split],
+        reads: &[Target::Split],
+        writes: &[Target::Output],
+    };
+}
+
 impl Pass for SubsurfacePass {
     fn build(ctx: &BuildCtx) -> Option<Self> {
-        ctx.set
-            .needs_subsurface_pass()
+        ctx.split()
             .then(|| Self::new(ctx.pipelines(), ctx.layouts, ctx.format))
-    }
-
-    fn stage(&self) -> Stage {
-        Stage::Last
     }
 
     /// Runs in frames that end with it (the renderer decided: a screen-space model drawn).

@@ -1,13 +1,14 @@
 //! The UI's GPU side: one pipeline (premultiplied alpha blending, no depth write, depth test
-//! Always), the skin atlas texture, a fixed-capacity vertex buffer created once and one draw
-//! call, last in the frame's last pass. The frame's packet hands over the UI's vertices when
-//! they changed (`crate::ui::Ui::needs_upload`); the screen size comes from the frame. Built
-//! where the renderer draws a UI (the game).
+//! Always), the skin atlas texture, fixed-capacity vertex buffers created once (one per
+//! prepared frame's copy) and one draw call, last in the frame's last pass. The frame's
+//! packet hands over the UI's vertices, written into the frame's copy; the screen size comes
+//! from the frame.
+//! Built where the renderer draws a UI (the game).
 
-use super::{BuildCtx, Pass, Stage};
+use super::{Access, BuildCtx, Declared, Pass, Target};
 use crate::render::pipelines::PipelineDevice;
 use crate::render::pipelines::{pipeline_layout, wgsl_module};
-use crate::render::prepared::{Drawn, PassFrame, PreparedFrame};
+use crate::render::prepared::{per_frame, Drawn, PassFrame, PreparedFrame, FRAMES_PREPARED};
 use crate::render::resources::Resources;
 use crate::render::targets::{depth_state, multisample, MSAA_SAMPLES};
 use crate::scene::FramePacket;
@@ -31,13 +32,18 @@ pub fn ui_vertex_layout() -> wgpu::VertexBufferLayout<'static> {
     }
 }
 
-pub struct UiPass {
-    pipeline: wgpu::RenderPipeline,
+/// One prepared frame's copy of what the UI's draw reads.
+struct UiCopy {
     bind_group: wgpu::BindGroup,
     params: wgpu::Buffer,
     vertices: wgpu::Buffer,
-    count: u32,
+    /// The screen size it holds.
     screen: [u32; 2],
+}
+
+pub struct UiPass {
+    pipeline: wgpu::RenderPipeline,
+    copies: [UiCopy; FRAMES_PREPARED],
     srgb: bool,
 }
 
@@ -65,18 +71,6 @@ impl UiPass {
             mag_filter: wgpu::FilterMode::Linear,
             min_filter: wgpu::FilterMode::Linear,
             ..Default::default()
-        });
-        let params = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("ui params"),
-            size: std::mem::size_of::<UiUniform>() as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
-        let vertices = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("ui vertices"),
-            size: (Self::CAPACITY * std::mem::size_of::<UiVertex>()) as u64,
-            usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
         });
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("ui"),
@@ -109,23 +103,43 @@ impl UiPass {
                 },
             ],
         });
-        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("ui"),
-            layout: &layout,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: params.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: wgpu::BindingResource::TextureView(&view),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 2,
-                    resource: wgpu::BindingResource::Sampler(&sampler),
-                },
-            ],
+        let copies = per_frame(|_| {
+            let params = device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("ui params"),
+                size: std::mem::size_of::<UiUniform>() as u64,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            });
+            let vertices = device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("ui vertices"),
+                size: (Self::CAPACITY * std::mem::size_of::<UiVertex>()) as u64,
+                usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            });
+            let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("ui"),
+                layout: &layout,
+                entries: &[
+                    wgpu::BindGroupEntry {
+                        binding: 0,
+                        resource: params.as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 1,
+                        resource: wgpu::BindingResource::TextureView(&view),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 2,
+                        resource: wgpu::BindingResource::Sampler(&sampler),
+                    },
+                ],
+            });
+            UiCopy {
+                bind_group,
+                params,
+                vertices,
+                screen: [0, 0],
+            }
         });
         let pipeline_layout = pipeline_layout(device, "ui", &[Some(&layout)]);
         let module = wgsl_module(device, "ui", ui_shader_source());
@@ -158,27 +172,27 @@ impl UiPass {
             multiview_mask: None,
             cache: dev.cache,
         });
-        let mut r = Self {
+        Self {
             pipeline,
-            bind_group,
-            params,
-            vertices,
-            count: 0,
-            screen: [0, 0],
+            copies,
             srgb: format.is_srgb(),
-        };
-        r.set_screen(queue, (1, 1));
-        r
+        }
     }
 
-    /// Sets the surface size (pixels) the vertices are in; writes only when it changed
+    /// Writes the surface size (pixels) the vertices are in into `copy`, unless it holds it
     /// (returns whether it wrote).
-    fn set_screen(&mut self, queue: &wgpu::Queue, (width, height): (u32, u32)) -> bool {
+    fn set_screen(
+        &mut self,
+        queue: &wgpu::Queue,
+        copy: usize,
+        (width, height): (u32, u32),
+    ) -> bool {
         let size = [width.max(1), height.max(1)];
-        if size == self.screen {
+        let c = &mut self.copies[copy];
+        if size == c.screen {
             return false;
         }
-        self.screen = size;
+        c.screen = size;
         let params = UiUniform {
             screen: [
                 size[0] as f32,
@@ -187,38 +201,46 @@ impl UiPass {
                 0.0,
             ],
         };
-        queue.write_buffer(&self.params, 0, bytemuck::bytes_of(&params));
+        queue.write_buffer(&c.params, 0, bytemuck::bytes_of(&params));
         true
     }
 
-    /// Uploads the UI's vertices; at most [`UiPass::CAPACITY`] are kept.
-    fn upload(&mut self, queue: &wgpu::Queue, vertices: &[UiVertex]) {
+    /// The vertices drawn of `vertices`: at most [`UiPass::CAPACITY`], whole triangles.
+    fn count(vertices: &[UiVertex]) -> usize {
         let n = vertices.len().min(Self::CAPACITY);
-        let n = n - n % 3;
-        if n > 0 {
-            queue.write_buffer(&self.vertices, 0, bytemuck::cast_slice(&vertices[..n]));
-        }
-        self.count = n as u32;
+        n - n % 3
     }
 
-    /// Vertices the next draw will issue.
-    pub fn vertex_count(&self) -> u32 {
-        self.count
+    /// Writes `vertices` into `copy`. Every frame that draws the UI writes its copy: a
+    /// version check would write each change twice (once per copy) and make the writes per
+    /// frame follow how often the UI changes.
+    fn upload(&self, queue: &wgpu::Queue, copy: usize, vertices: &[UiVertex]) -> bool {
+        let n = Self::count(vertices);
+        if n > 0 {
+            let c = &self.copies[copy];
+            queue.write_buffer(&c.vertices, 0, bytemuck::cast_slice(&vertices[..n]));
+        }
+        n > 0
     }
+}
+
+/// The UI, over everything, into the output.
+impl Declared for UiPass {
+    const ACCESS: Access = Access {
+        creates: &[],
+        reads: &[],
+        writes: &[Target::Output],
+    };
 }
 
 impl Pass for UiPass {
     fn build(ctx: &BuildCtx) -> Option<Self> {
-        ctx.ui
+        ctx.wanted::<Self>()
             .then(|| Self::new(ctx.pipelines(), ctx.queue, ctx.format))
     }
 
-    fn stage(&self) -> Stage {
-        Stage::Last
-    }
-
-    /// Takes the frame's size and the UI's vertices when they changed; runs when there is
-    /// anything to draw.
+    /// Writes the frame's size and the UI's vertices into the frame's copy where it holds
+    /// others; runs when there is anything to draw (`steps`: the vertices drawn).
     fn prepare(
         &mut self,
         queue: &wgpu::Queue,
@@ -226,32 +248,36 @@ impl Pass for UiPass {
         frame: &mut PreparedFrame,
         _res: &Resources,
     ) -> PassFrame {
-        frame.uploads += u32::from(self.set_screen(queue, frame.size));
-        if let Some(vertices) = packet.ui {
-            self.upload(queue, vertices);
-            frame.uploads += 1;
+        if !frame.draw.ui {
+            return PassFrame::default();
         }
+        let copy = frame.copy;
+        frame.uploads += u32::from(self.set_screen(queue, copy, frame.size));
+        frame.uploads += u32::from(self.upload(queue, copy, packet.ui));
+        let count = Self::count(packet.ui) as u32;
         PassFrame {
-            runs: frame.draw.ui && self.count > 0,
-            steps: 0,
+            runs: count > 0,
+            steps: count,
         }
     }
 
     /// The whole UI with one draw call.
     fn draw(
         &self,
-        _frame: &PreparedFrame,
+        frame: &PreparedFrame,
         _res: &Resources,
         pass: &mut wgpu::RenderPass<'_>,
     ) -> Drawn {
+        let count = frame.pass(<Self as super::Slot>::SLOT).steps;
+        let c = &self.copies[frame.copy];
         pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, &self.bind_group, &[]);
+        pass.set_bind_group(0, &c.bind_group, &[]);
         pass.set_vertex_buffer(
             0,
-            self.vertices
-                .slice(..self.count as u64 * std::mem::size_of::<UiVertex>() as u64),
+            c.vertices
+                .slice(..count as u64 * std::mem::size_of::<UiVertex>() as u64),
         );
-        pass.draw(0..self.count, 0..1);
+        pass.draw(0..count, 0..1);
         Drawn::calls(1)
     }
 }
