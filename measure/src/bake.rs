@@ -127,7 +127,14 @@ pub fn measure_channel(
     let (edges, x_max) = (at.edges, at.x_max);
     let semi = mc::Geometry::SemiInfinite;
     let normal = (semi, mc::Source::Normal);
-    let n = photons_for(med, normal, budget.kernel, budget.kernel_events, budget, seed);
+    let n = photons_for(
+        med,
+        normal,
+        budget.kernel,
+        budget.kernel_events,
+        budget,
+        seed,
+    );
     let r = mc::simulate(
         med,
         semi,
@@ -351,7 +358,15 @@ mod tests {
         let path = crate::ground_truth::file_for(&crate::ground_truth::source_dir(), &dark.name);
         let refs = crate::ground_truth::ReferenceSet::load(&path).expect("skin-dark references");
         let slabs: Vec<_> = (0..3)
-            .map(|c| slab_column(&medium(&dark, c), &direct_thicknesses(), &bake::DEFAULT_BUDGET, 7, 2))
+            .map(|c| {
+                slab_column(
+                    &medium(&dark, c),
+                    &direct_thicknesses(),
+                    &bake::DEFAULT_BUDGET,
+                    7,
+                    2,
+                )
+            })
             .collect();
         let ln_t: [DVec3; SLAB_NODES] =
             std::array::from_fn(|k| DVec3::from_array([0, 1, 2].map(|c| slabs[c][k].ln())));

@@ -47,7 +47,14 @@ pub fn sphere_row(m: &Material, j: usize, c: usize, budget: &Budget, threads: us
     const SEED: u64 = 0x5EED_5F4E;
     let med = crate::bake::medium(m, c);
     let seed = SEED + 1000 * c as u64 + j as u64;
-    sphere_run(&med, row_radius_mm(j), m.sigma_tr()[c], budget, seed, threads)
+    sphere_run(
+        &med,
+        row_radius_mm(j),
+        m.sigma_tr()[c],
+        budget,
+        seed,
+        threads,
+    )
 }
 
 /// One LUT row: ln M per texel (u = (n·l + 1)/2, lit side last) of a sphere of radius `rho` of
@@ -66,15 +73,7 @@ pub fn sphere_run(
 ) -> Vec<f64> {
     let edges = band_edges();
     let pilot = budget.min_photons.clamp(1, 200);
-    let probe = mc::sphere_with(
-        med,
-        rho,
-        &edges,
-        budget.max_events,
-        pilot,
-        seed ^ 0xA5A5,
-        1,
-    );
+    let probe = mc::sphere_with(med, rho, &edges, budget.max_events, pilot, seed ^ 0xA5A5, 1);
     let per_photon = (probe.events as f64 / pilot as f64).max(1.0);
     let n = ((budget.sphere_events as f64 / per_photon) as u64)
         .clamp(budget.min_photons, budget.sphere.max(budget.min_photons));

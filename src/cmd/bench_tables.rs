@@ -71,8 +71,20 @@ pub fn materials() -> Vec<Material> {
         made("mid-index", [0.98, 0.8, 0.6], [2.0, 0.7, 4.0], 1.2, 0.0),
         made("high-index", [0.999, 0.9, 0.4], [1.0, 3.0, 0.3], 1.6, 0.0),
         made("between", [0.995, 0.93, 0.75], [0.8, 1.5, 2.5], 1.33, 0.0),
-        made("mid-index-g0.8", [0.98, 0.8, 0.6], [2.0, 0.7, 4.0], 1.2, 0.8),
-        made("between-g0.8", [0.995, 0.93, 0.75], [0.8, 1.5, 2.5], 1.33, 0.8),
+        made(
+            "mid-index-g0.8",
+            [0.98, 0.8, 0.6],
+            [2.0, 0.7, 4.0],
+            1.2,
+            0.8,
+        ),
+        made(
+            "between-g0.8",
+            [0.995, 0.93, 0.75],
+            [0.8, 1.5, 2.5],
+            1.33,
+            0.8,
+        ),
     ];
     v.extend(spread);
     v
@@ -103,12 +115,14 @@ pub fn run(args: TablesArgs) -> Result<(), String> {
     if let Some(n) = args.materials {
         mats.truncate(n);
     }
-    let with_lut = match interpolated(&mats[0]) {
-        None => {
-            return Err("the shipped tables grid does not match this build (`dermis lut --grid tables`)".into())
-        }
-        Some((_, lut)) => lut.is_some(),
-    };
+    let with_lut =
+        match interpolated(&mats[0]) {
+            None => return Err(
+                "the shipped tables grid does not match this build (`dermis lut --grid tables`)"
+                    .into(),
+            ),
+            Some((_, lut)) => lut.is_some(),
+        };
     if !with_lut {
         eprintln!("bench tables: the shipped sphere grid does not match this build: tables only");
     }
@@ -119,7 +133,10 @@ pub fn run(args: TablesArgs) -> Result<(), String> {
         // `the_shipped_tables_are_what_the_bake_measures`).
         progress.begin(&format!("{} η={} g={}: direct tables", m.name, m.eta, m.g));
         let direct = bake::shipped(m).unwrap_or_else(|| measure(m, DEFAULT_BUDGET, threads));
-        progress.step(&format!("{} η={} g={}: direct sphere rows", m.name, m.eta, m.g));
+        progress.step(&format!(
+            "{} η={} g={}: direct sphere rows",
+            m.name, m.eta, m.g
+        ));
         let direct_lut = with_lut.then(|| {
             preintegrated::shipped(m)
                 .unwrap_or_else(|| bake_lut(&direct, m, &DEFAULT_BUDGET, threads))
@@ -134,7 +151,10 @@ pub fn run(args: TablesArgs) -> Result<(), String> {
         let again = measure_seeded(m, DEFAULT_BUDGET, threads, 0x5EED_0DD5);
         let noise = difference(&again, &direct, None);
         if std::env::var_os("DERMIS_BENCH_DUMP").is_some() {
-            eprintln!("{}: grid {grid:?}\ndirect {direct:?}\nagain {again:?}", m.name);
+            eprintln!(
+                "{}: grid {grid:?}\ndirect {direct:?}\nagain {again:?}",
+                m.name
+            );
         }
         let mut row = json!({
             "material": m.name,

@@ -180,7 +180,12 @@ impl TablesGrid {
     pub fn to_bytes(&self) -> Vec<u8> {
         let mut out = write_header(MAGIC, &header(&self.budget));
         for n in &self.nodes {
-            let values = n.cdf.iter().chain(&n.oblique).chain(&n.shift).chain(&n.slab);
+            let values = n
+                .cdf
+                .iter()
+                .chain(&n.oblique)
+                .chain(&n.shift)
+                .chain(&n.slab);
             for v in values {
                 out.extend((*v as f32).to_le_bytes());
             }
@@ -384,7 +389,8 @@ impl TablesGrid {
                     (n, n.median() / median, w)
                 })
                 .collect();
-            let shape = |rho: f64| -> f64 { near.iter().map(|(n, k, w)| w * n.shape(rho * k)).sum() };
+            let shape =
+                |rho: f64| -> f64 { near.iter().map(|(n, k, w)| w * n.shape(rho * k)).sum() };
             let mut below = 0.0;
             for (k, w) in edges.windows(2).enumerate() {
                 let at = shape(st * w[1]);
@@ -480,14 +486,21 @@ mod tests {
             let exact = want(w[1]) - want(w[0]);
             if exact > 0.01 * total {
                 let got = b.mass[k][0];
-                assert!((got / exact - 1.0).abs() < 0.02, "ring {k}: {got} vs {exact}");
+                assert!(
+                    (got / exact - 1.0).abs() < 0.02,
+                    "ring {k}: {got} vs {exact}"
+                );
             }
         }
         // Slabs: T̂(τ) with τ = σ'_t d, interpolated in s (within the τ nodes).
         for (k, t) in b.slab.iter().enumerate() {
             let tau = st * SLAB_FIRST_MM * (1u32 << k) as f64;
             let exact = (-3f64.sqrt() * s * tau).exp() * 0.5;
-            assert!((t[0] / exact - 1.0).abs() < 0.02, "slab {k}: {} vs {exact}", t[0]);
+            assert!(
+                (t[0] / exact - 1.0).abs() < 0.02,
+                "slab {k}: {} vs {exact}",
+                t[0]
+            );
         }
         // δ = δ̂/σ'_t.
         let d = b.shift[3][0] * st;
@@ -499,7 +512,9 @@ mod tests {
         assert_eq!(eta_node(0), 1.0);
         assert!((eta_node(ETA_COUNT - 1) - ETA_MAX).abs() < 1e-12);
         // The first step is the smallest: t = √(η − 1) spaces the nodes quadratically.
-        assert!(eta_node(1) - eta_node(0) < 0.2 * (eta_node(ETA_COUNT - 1) - eta_node(ETA_COUNT - 2)));
+        assert!(
+            eta_node(1) - eta_node(0) < 0.2 * (eta_node(ETA_COUNT - 1) - eta_node(ETA_COUNT - 2))
+        );
         for r in 0..ETA_COUNT {
             assert!((eta_position(eta_node(r), ETA_COUNT) - r as f64).abs() < 1e-9);
         }
@@ -509,12 +524,17 @@ mod tests {
         for (i, s) in s_nodes().iter().enumerate() {
             assert!((s_index(*s) - i as f64).abs() < 1e-9, "{i}");
         }
-        assert!((s_node(0) - S_FIRST).abs() < 1e-15 && (s_node(S_COUNT - 1) - S_LAST).abs() < 1e-12);
+        assert!(
+            (s_node(0) - S_FIRST).abs() < 1e-15 && (s_node(S_COUNT - 1) - S_LAST).abs() < 1e-12
+        );
         // Geometric toward white, even in α' toward dark.
         let alpha = |i: usize| 1.0 - s_node(i) * s_node(i);
         assert!((s_node(2) / s_node(1) - s_node(1) / s_node(0)).abs() < 0.01);
         let last = S_COUNT - 1;
-        assert!(((alpha(last - 1) - alpha(last)) / (alpha(last - 2) - alpha(last - 1)) - 1.0).abs() < 0.5);
+        assert!(
+            ((alpha(last - 1) - alpha(last)) / (alpha(last - 2) - alpha(last - 1)) - 1.0).abs()
+                < 0.5
+        );
     }
 
     #[test]
