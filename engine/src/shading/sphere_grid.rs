@@ -135,6 +135,8 @@ impl SphereGrid {
     /// kernel total (the tables grid's at the same s and η), plus log2 of the total the tables
     /// grid interpolates for the channel (its s nodes are twice as dense; the albedo is what
     /// changes fastest with s, the rows' shape much less).
+    // `c` indexes the texels' channels and names the material's channel alike.
+    #[allow(clippy::needless_range_loop)]
     pub fn rows(&self, m: &Material, tables: &grid::TablesGrid) -> Vec<[f64; 3]> {
         // Past the last s node (α' = 0.10) the rows keep their shape and follow the total.
         let s_all: Vec<f64> = (0..S_NODES).map(s_node).collect();
