@@ -30,7 +30,7 @@ pub struct TablesArgs {
     pub out: Option<PathBuf>,
     /// Only the first N materials of the list (the Monte Carlo's sphere rows take a minute or
     /// two per material on 2 cores).
-    #[arg(long, value_parser = crate::cmd::args::parse_material_count)]
+    #[arg(long, value_parser = crate::cmd::args::parse_material_count, allow_hyphen_values = true)]
     pub materials: Option<usize>,
 }
 
