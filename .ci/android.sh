@@ -15,8 +15,11 @@ PACKAGE=org.dermis.app
 MIN_SDK=26
 TARGET_SDK=35
 # 7 MB: issue 11's 6 MB plus what the scanned head costs in the APK (issue 27: its mesh and
-# its two maps' ETC2 encodings, 1.03 MB deflated; the APK was 6.51 MB with it).
-BUDGET_BYTES=7000000
+# its two maps' ETC2 encodings, 1.03 MB deflated; the APK was 6.51 MB with it), plus 0.25 MB
+# for the nondimensional optics grids every unshipped skin's tables come from (issue 33:
+# optics.tables + optics.lut, 234 KB stored uncompressed in the .so, which replace a 37 s Monte
+# Carlo per material on the desktop and a wrong preset's tables on the phone). 7.07 MB with them.
+BUDGET_BYTES=7250000
 ALLOWED_NEEDED="libc.so libm.so libdl.so liblog.so libandroid.so"
 
 FAILURES=0
