@@ -233,7 +233,7 @@ fn qemu() -> Result<PathBuf, String> {
 
 /// A test executable cargo built.
 struct TestBinary {
-    /// `unittests` for the library's, else the integration test's name.
+    /// `unittests/<crate>` for a library's, else `tests/<name>` for an integration test.
     name: String,
     exe: PathBuf,
     /// The package folder: cargo runs tests there.
@@ -314,7 +314,12 @@ fn build_tests(root: &Path, tc: &Toolchain) -> Result<Vec<TestBinary>, String> {
         let name = if kinds.iter().any(|k| k == "test") {
             format!("tests/{}", msg["target"]["name"].as_str().unwrap_or("?"))
         } else {
-            "unittests".to_string()
+            // One per crate: the name is also the log's file name, so two crates' unit tests
+            // running side by side must not share it.
+            format!(
+                "unittests/{}",
+                msg["target"]["name"].as_str().unwrap_or("?")
+            )
         };
         let manifest = PathBuf::from(msg["manifest_path"].as_str().unwrap_or_default());
         binaries.push(TestBinary {
@@ -329,8 +334,8 @@ fn build_tests(root: &Path, tc: &Toolchain) -> Result<Vec<TestBinary>, String> {
         return Err("cargo built no test binaries".into());
     }
     // The unit tests take longest under qemu: first, so the integration tests run beside them.
-    binaries
-        .sort_by(|a, b| (a.name != "unittests", &a.name).cmp(&(b.name != "unittests", &b.name)));
+    let unit = |b: &TestBinary| !b.name.starts_with("unittests/");
+    binaries.sort_by(|a, b| (unit(a), &a.name).cmp(&(unit(b), &b.name)));
     Ok(binaries)
 }
 
