@@ -45,22 +45,7 @@ impl Targets {
     ) -> Self {
         let (width, height) = (width.max(1), height.max(1));
         let make = |label, format, usage| {
-            device
-                .create_texture(&wgpu::TextureDescriptor {
-                    label: Some(label),
-                    size: wgpu::Extent3d {
-                        width,
-                        height,
-                        depth_or_array_layers: 1,
-                    },
-                    mip_level_count: 1,
-                    sample_count: MSAA_SAMPLES,
-                    dimension: wgpu::TextureDimension::D2,
-                    format,
-                    usage,
-                    view_formats: &[],
-                })
-                .create_view(&wgpu::TextureViewDescriptor::default())
+            target_view(device, label, (width, height), format, MSAA_SAMPLES, usage)
         };
         let usage = wgpu::TextureUsages::RENDER_ATTACHMENT;
         Self {
@@ -135,22 +120,7 @@ pub struct SplitTargets {
 impl SplitTargets {
     pub fn new(device: &wgpu::Device, (width, height): (u32, u32)) -> Self {
         let make = |label, samples, usage| {
-            device
-                .create_texture(&wgpu::TextureDescriptor {
-                    label: Some(label),
-                    size: wgpu::Extent3d {
-                        width,
-                        height,
-                        depth_or_array_layers: 1,
-                    },
-                    mip_level_count: 1,
-                    sample_count: samples,
-                    dimension: wgpu::TextureDimension::D2,
-                    format: SPLIT_FORMAT,
-                    usage,
-                    view_formats: &[],
-                })
-                .create_view(&Default::default())
+            target_view(device, label, (width, height), SPLIT_FORMAT, samples, usage)
         };
         let attach = wgpu::TextureUsages::RENDER_ATTACHMENT;
         let sampled = attach | wgpu::TextureUsages::TEXTURE_BINDING;
@@ -210,4 +180,32 @@ pub fn depth_attachment(targets: &Targets) -> wgpu::RenderPassDepthStencilAttach
         }),
         stencil_ops: None,
     }
+}
+
+/// A single-level 2D render target of `format` with `samples` samples, viewed whole: what every
+/// target of the frame is.
+fn target_view(
+    device: &wgpu::Device,
+    label: &str,
+    (width, height): (u32, u32),
+    format: wgpu::TextureFormat,
+    samples: u32,
+    usage: wgpu::TextureUsages,
+) -> wgpu::TextureView {
+    device
+        .create_texture(&wgpu::TextureDescriptor {
+            label: Some(label),
+            size: wgpu::Extent3d {
+                width,
+                height,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: samples,
+            dimension: wgpu::TextureDimension::D2,
+            format,
+            usage,
+            view_formats: &[],
+        })
+        .create_view(&wgpu::TextureViewDescriptor::default())
 }
