@@ -21,7 +21,7 @@ use dermis_game::governor::GovernorConfig;
 use dermis_game::rules::Screen;
 use serde_json::{json, Value};
 
-use crate::cmd::shaders::{mali_cost, PenumbraRun};
+use crate::cmd::shaders::{mali_cost, penumbra_cycles, PenumbraRun};
 use crate::cmd::stats::{median, ratio_ci};
 
 /// Frames the menu plays before the showroom is measured, and frames of play before the
@@ -38,6 +38,8 @@ pub struct Framing {
     pub skin_pixels: u64,
     /// Jump passes of the penumbra map in the penumbra tier's frame (`None`: not run).
     pub penumbra_jumps: Option<usize>,
+    /// The texels its passes shaded in that frame (the seed pass's, the jump passes').
+    pub penumbra: PenumbraRun,
     /// Per model (`models` order): GPU ms per round.
     pub gpu_ms: Vec<Vec<f64>>,
 }
@@ -113,10 +115,15 @@ pub fn measure(
             game.run(&mut still, gpu, Output::Offscreen(&target))
                 .map_err(|s| format!("frame not drawn: {s:?}"))?;
             let runs = game.stats.passes[penumbra];
-            Ok((target.read(gpu), runs))
+            let [seed, jumps] = game.stats.texels[penumbra];
+            let run = PenumbraRun {
+                seed_texels: seed as f64,
+                jump_texels: jumps as f64,
+            };
+            Ok((target.read(gpu), runs, run))
         };
-        let (ward, _) = shot(&mut session, ShadingModel::BASELINE)?;
-        let (pre, runs) = shot(&mut session, penumbra_tier)?;
+        let (ward, _, _) = shot(&mut session, ShadingModel::BASELINE)?;
+        let (pre, runs, run) = shot(&mut session, penumbra_tier)?;
         let skin_pixels = differing(&ward, &pre);
         let penumbra_jumps = (runs > 0).then(|| runs as usize - 1);
         // GPU time per model, in rotating order, after a frame of each.
@@ -145,6 +152,7 @@ pub fn measure(
             name,
             skin_pixels,
             penumbra_jumps,
+            penumbra: run,
             gpu_ms,
         });
     }
@@ -172,23 +180,22 @@ pub fn report(framings: &[Framing], models: &[ShadingModel], mali: Option<&Value
     let rows: Vec<Value> = framings
         .iter()
         .map(|f| {
-            let run = PenumbraRun {
-                texels: (grid * grid) as f64,
-                jumps: f.penumbra_jumps.unwrap_or(0),
-            };
+            let run = f.penumbra;
+            let px = f.skin_pixels as f64;
             // One-pass models only (a screen-space model's subsurface pass runs over the
             // whole frame, not per skin pixel: `bench shading` prices it at full screen).
             let price = |m: ShadingModel, g: &str| {
                 let mali = mali.filter(|_| !m.effects().screen_space)?;
-                let run = if f.penumbra_jumps.is_some() {
-                    run
-                } else {
-                    PenumbraRun {
-                        texels: 0.0,
-                        jumps: 0,
-                    }
-                };
-                mali_cost(mali, Some(m), g, (0, 0), 0, f.skin_pixels as f64, run).map(|c| c.0)
+                mali_cost(mali, Some(m), g, (0, 0), 0, px, run).map(|c| c.0)
+            };
+            // What the price is made of: the fragment shader, the seed and the jump passes
+            // spread over the skin.
+            let parts = |m: ShadingModel, g: &str| -> Option<Value> {
+                let mali = mali.filter(|_| m.effects().penumbra)?;
+                let fragment = mali_cost(mali, Some(m), g, (0, 0), 0, px, PenumbraRun::default())?.0;
+                let (seed, jumps) = penumbra_cycles(mali, g, run)?;
+                Some(json!({"fragment": fragment, "seed": seed / px.max(1.0),
+                            "jumps": jumps / px.max(1.0)}))
             };
             let per_model: Vec<Value> = models
                 .iter()
@@ -201,7 +208,8 @@ pub fn report(framings: &[Framing], models: &[ShadingModel], mali: Option<&Value
                         let w = price(ShadingModel::BASELINE, g);
                         cycles.insert(
                             g.into(),
-                            json!({"per_skin_pixel": p, "ratio_to_ward": p.zip(w).map(|(p, w)| p / w)}),
+                            json!({"per_skin_pixel": p, "ratio_to_ward": p.zip(w).map(|(p, w)| p / w),
+                                   "parts": parts(m, g)}),
                         );
                     }
                     json!({"model": m.name(), "gpu_ms_median": median(ms),
@@ -211,7 +219,8 @@ pub fn report(framings: &[Framing], models: &[ShadingModel], mali: Option<&Value
                 .collect();
             json!({"framing": f.name, "skin_pixels": f.skin_pixels,
                    "penumbra": {"runs": f.penumbra_jumps.is_some(), "jumps": f.penumbra_jumps,
-                                "grid_texels": run.texels},
+                                "grid_texels": grid * grid, "seed_texels": run.seed_texels,
+                                "jump_texels": run.jump_texels},
                    "models": per_model})
         })
         .collect();
@@ -230,8 +239,8 @@ pub fn table(report: &Value) -> String {
             fr["skin_pixels"],
             match pen["jumps"].as_u64() {
                 Some(j) => format!(
-                    "runs (seed + {j} jump passes over {} texels)",
-                    pen["grid_texels"]
+                    "runs (seed over {} and {j} jump passes over {} texels in all, of a grid of {})",
+                    pen["seed_texels"], pen["jump_texels"], pen["grid_texels"]
                 ),
                 None => "not run".into(),
             }
@@ -262,6 +271,23 @@ pub fn table(report: &Value) -> String {
                 f(&m["mali"]["G52"]["ratio_to_ward"], 3),
                 f(&m["mali"]["G57"]["per_skin_pixel"], 2),
                 f(&m["mali"]["G57"]["ratio_to_ward"], 3),
+            );
+        }
+        for m in fr["models"].as_array().into_iter().flatten() {
+            let parts = &m["mali"]["G57"]["parts"];
+            if parts.is_null() {
+                continue;
+            }
+            let p = &m["mali"]["G52"]["parts"];
+            s += &format!(
+                "  {} per skin pixel, G52 / G57: fragment {} / {}, penumbra seed {} / {}, jumps {} / {}\n",
+                m["model"].as_str().unwrap_or("?"),
+                f(&p["fragment"], 2),
+                f(&parts["fragment"], 2),
+                f(&p["seed"], 3),
+                f(&parts["seed"], 3),
+                f(&p["jumps"], 3),
+                f(&parts["jumps"], 3),
             );
         }
     }

@@ -245,17 +245,20 @@ fn extrapolate(mali: &Value, base: &str, gpu: &str, steps: &[(&str, f64)]) -> Op
     out.into_iter().reduce(f64::max)
 }
 
-/// One frame's penumbra passes: the grid's texels and the jump passes after the seed pass.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// One frame's penumbra passes: the texels the seed pass shades and those the jump passes
+/// shade, all together.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct PenumbraRun {
-    pub texels: f64,
-    pub jumps: usize,
+    pub seed_texels: f64,
+    pub jump_texels: f64,
 }
 
 impl PenumbraRun {
-    /// The passes over the game's grid for the game's key light and character (the frustum
-    /// the renderer fits, so the same number of jumps) and a material whose edge spread
-    /// reaches `reach_mm` ([`dermis_engine::shading::edge_spread::reach_mm`]).
+    /// The passes over the whole of the game's grid for the game's key light and character
+    /// (the frustum the renderer fits, so the same number of jumps) and a material whose
+    /// edge spread reaches `reach_mm`
+    /// ([`dermis_engine::shading::edge_spread::reach_mm`]): an upper bound (a frame keeps
+    /// them to the texels its receivers read).
     pub fn runner(reach_mm: f64) -> Self {
         use dermis_engine::render::{jump_steps, ShadowView, PENUMBRA_BLOCK};
         use dermis_engine::scene::{key_light, CHARACTER};
@@ -264,9 +267,10 @@ impl PenumbraRun {
         let view = ShadowView::fit(key_light(glam::Vec3::ZERO).position, centre, radius, size);
         let grid = size / PENUMBRA_BLOCK;
         let width = view.texel_m * size as f32;
+        let texels = (grid * grid) as f64;
         Self {
-            texels: (grid * grid) as f64,
-            jumps: jump_steps(grid, width, reach_mm as f32).count(),
+            seed_texels: texels,
+            jump_texels: texels * jump_steps(grid, width, reach_mm as f32).count() as f64,
         }
     }
 }
@@ -275,8 +279,8 @@ impl PenumbraRun {
 pub fn penumbra_cycles(mali: &Value, gpu: &str, run: PenumbraRun) -> Option<(f64, f64)> {
     let bound = |s: &str| mali["shaders"][s][gpu]["frag"]["bound"].as_f64();
     Some((
-        run.texels * bound("penumbra_seed")?,
-        run.texels * run.jumps as f64 * bound("penumbra_jump")?,
+        run.seed_texels * bound("penumbra_seed")?,
+        run.jump_texels * bound("penumbra_jump")?,
     ))
 }
 

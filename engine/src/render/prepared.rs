@@ -98,6 +98,8 @@ pub struct RenderStats {
     pub triangles: u32,
     /// Draw calls per pass (`passes::NAMES` order).
     pub passes: [u32; PASS_COUNT],
+    /// Texels per pass that its full-screen draws shade ([`Drawn::texels`]).
+    pub texels: [[u64; 2]; PASS_COUNT],
 }
 
 /// What a pass recorded: draw calls and triangles.
@@ -105,6 +107,10 @@ pub struct RenderStats {
 pub struct Drawn {
     pub draw_calls: u32,
     pub triangles: u32,
+    /// The texels a pass of full-screen draws shades (a scissor may keep a draw to part of
+    /// its target): its first draw's, and its other draws' together (the penumbra map's seed
+    /// pass, its jump passes); 0 where not counted.
+    pub texels: [u64; 2],
 }
 
 impl Drawn {
@@ -113,6 +119,7 @@ impl Drawn {
         Self {
             draw_calls: n,
             triangles: 0,
+            texels: [0; 2],
         }
     }
 }
@@ -121,6 +128,8 @@ impl std::ops::AddAssign for Drawn {
     fn add_assign(&mut self, o: Self) {
         self.draw_calls += o.draw_calls;
         self.triangles += o.triangles;
+        self.texels[0] += o.texels[0];
+        self.texels[1] += o.texels[1];
     }
 }
 
@@ -128,6 +137,8 @@ impl RenderStats {
     /// Adds what pass `slot` recorded.
     pub fn add(&mut self, slot: usize, drawn: Drawn) {
         self.passes[slot] += drawn.draw_calls;
+        self.texels[slot][0] += drawn.texels[0];
+        self.texels[slot][1] += drawn.texels[1];
         self.draw_calls += drawn.draw_calls;
         self.triangles += drawn.triangles;
     }

@@ -160,6 +160,24 @@ impl ShadowView {
         }
     }
 
+    /// Where in the map (uv: 0…1 across, y down, as receivers address it) the points inside
+    /// the box `lo..hi` that the camera `camera` sees can lie: the light's image of the box
+    /// cut to the light's image of the camera's frustum between the depths (along its axis)
+    /// the box spans. Empty (lo > hi on an axis) where the camera sees none of the box; `None`
+    /// where it cannot be told (no map, part of either piece behind the light or the camera).
+    pub fn seen_box_uv(&self, camera: Mat4, (lo, hi): (Vec3, Vec3)) -> Option<(Vec2, Vec2)> {
+        if !(self.drawn && lo.is_finite() && hi.is_finite()) {
+            return None;
+        }
+        let corners = box_corners(lo, hi);
+        let (box_lo, box_hi) = self.image_of(&corners)?;
+        let (seen_lo, seen_hi) = self.image_of(&seen_part(camera, &corners)?)?;
+        let (lo, hi) = (box_lo.max(seen_lo), box_hi.min(seen_hi));
+        // Clip x, y → uv (y flips).
+        let uv = |x: f32, y: f32| Vec2::new(0.5 + 0.5 * x, 0.5 - 0.5 * y);
+        Some((uv(lo.x, hi.y), uv(hi.x, lo.y)))
+    }
+
     /// The rectangle (the map's clip x, y) around the light's image of `points`; `None` where
     /// one is behind the light.
     fn image_of(&self, points: &[Vec3]) -> Option<(Vec2, Vec2)> {

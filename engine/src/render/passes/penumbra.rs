@@ -149,6 +149,83 @@ pub fn subject_resolves(packet: &FramePacket, subject: &SubjectPose, diffusion_m
     resolvable(diffusion_mm, px)
 }
 
+/// A rectangle of grid texels, `x0..x1` × `y0..y1`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Region {
+    pub x0: u32,
+    pub y0: u32,
+    pub x1: u32,
+    pub y1: u32,
+}
+
+impl Region {
+    pub const EMPTY: Self = Self {
+        x0: 0,
+        y0: 0,
+        x1: 0,
+        y1: 0,
+    };
+
+    /// The whole grid of `size`² texels.
+    pub fn full(size: u32) -> Self {
+        Self {
+            x1: size,
+            y1: size,
+            ..Self::EMPTY
+        }
+    }
+
+    pub fn texels(&self) -> u64 {
+        self.x1.saturating_sub(self.x0) as u64 * self.y1.saturating_sub(self.y0) as u64
+    }
+
+    /// Grown by `by` texels on every side, kept to a grid of `size`² texels.
+    pub fn grown(self, by: u32, size: u32) -> Self {
+        if self.texels() == 0 {
+            return self;
+        }
+        Self {
+            x0: self.x0.saturating_sub(by),
+            y0: self.y0.saturating_sub(by),
+            x1: self.x1.saturating_add(by).min(size),
+            y1: self.y1.saturating_add(by).min(size),
+        }
+    }
+}
+
+/// The texels of a `size`² grid over a map of `map_size`² texels that receivers inside the
+/// map's rectangle `uv` ([`ShadowView::seen_box_uv`](crate::render::ShadowView::seen_box_uv))
+/// read: every texel the rectangle touches once grown by the ramp of the shadow test (more
+/// than the receivers' normal offset moves their point); `None`: the whole grid. Empty where
+/// the rectangle is.
+pub fn receivers(uv: Option<(Vec2, Vec2)>, size: u32, map_size: u32) -> Region {
+    let Some((lo, hi)) = uv.filter(|(lo, hi)| lo.is_finite() && hi.is_finite()) else {
+        return Region::full(size);
+    };
+    if lo.x > hi.x || lo.y > hi.y {
+        return Region::EMPTY;
+    }
+    let pad = crate::render::SHADOW_RAMP_TEXELS / map_size.max(1) as f32;
+    let s = size as f32;
+    let lo = ((lo - pad) * s).floor().clamp(Vec2::ZERO, Vec2::splat(s));
+    let hi = ((hi + pad) * s).ceil().clamp(Vec2::ZERO, Vec2::splat(s));
+    Region {
+        x0: lo.x as u32,
+        y0: lo.y as u32,
+        x1: hi.x as u32,
+        y1: hi.y as u32,
+    }
+}
+
+/// The regions of a frame's passes for receivers in `region`, its jumps `steps` (in order):
+/// the seed pass over every texel a seed can be carried from (as far as the steps carry), each
+/// jump pass over every texel the passes after it read (as far as their steps reach): the last
+/// over the receivers' texels alone.
+pub fn pass_regions(region: Region, steps: &[u32], size: u32) -> impl Iterator<Item = Region> + '_ {
+    let after = |k: usize| steps[k..].iter().sum::<u32>();
+    (0..=steps.len()).map(move |k| region.grown(after(k), size))
+}
+
 /// The bind group layout of both passes.
 fn layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
     let fragment = wgpu::ShaderStages::FRAGMENT;
@@ -197,6 +274,8 @@ pub struct PenumbraPass {
     groups: [Vec<[wgpu::BindGroup; 2]>; FRAMES_PREPARED],
     /// The constants each copy holds (steps, edge gap): unchanged ones are not written again.
     written: [Option<(u32, f32)>; FRAMES_PREPARED],
+    /// Per prepared frame's copy: the grid texels its receivers can read ([`receivers`]).
+    regions: [Region; FRAMES_PREPARED],
     /// Passes per copy (the seed and every possible jump).
     passes: u64,
 }
@@ -292,6 +371,7 @@ impl PenumbraPass {
             uniforms,
             groups,
             written: [None; FRAMES_PREPARED],
+            regions: [Region::EMPTY; FRAMES_PREPARED],
             passes,
         }
     }
@@ -350,6 +430,18 @@ impl Pass for PenumbraPass {
         let reach = reach_for(diffusion);
         let jumps = jump_steps(self.size, shadow.width_m(), reach).count() as u32;
         let copy = frame.copy;
+        // Only the texels the subject's seen part can read (the map is fitted to more: the
+        // floor its shadow falls on, the parts of it out of the frame).
+        let posed = frame
+            .subject
+            .and_then(|d| res.subjects.get(d.slot))
+            .and_then(|s| s.gpu.posed);
+        let uv = posed.and_then(|b| shadow.seen_box_uv(packet.view.view_proj, b));
+        let region = receivers(uv, self.size, shadow.size);
+        if region.texels() == 0 {
+            return PassFrame::default();
+        }
+        self.regions[copy] = region;
         if self.written[copy] != Some((jumps, gap)) {
             // Every pass's constants in one write (each write stages a buffer of its own).
             let mut slots = [0u8; SLOT as usize * MAX_PASSES];
@@ -395,12 +487,18 @@ impl Pass for PenumbraPass {
             return Drawn::default();
         };
         let jumps = frame.pass(<Self as super::Slot>::SLOT).steps as usize;
+        // The jump steps halve down to 1 ([`jump_steps`]).
+        let steps: Vec<u32> = (0..jumps).rev().map(|k| 1 << k).collect();
+        let regions = pass_regions(self.regions[frame.copy], &steps, self.size);
         let mut target = jumps % 2;
-        for (k, groups) in self.groups[frame.copy].iter().take(jumps + 1).enumerate() {
+        let mut texels = [0u64; 2];
+        let passes = self.groups[frame.copy].iter().take(jumps + 1);
+        for (k, (groups, region)) in passes.zip(regions).enumerate() {
             let seed = k == 0;
             if !seed {
                 target = 1 - target;
             }
+            texels[usize::from(!seed)] += region.texels();
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some(if seed {
                     "penumbra seed"
@@ -424,9 +522,15 @@ impl Pass for PenumbraPass {
             pass.set_pipeline(if seed { &self.seed } else { &self.jump });
             // Jumps read the other target; the seed reads none (bound: the other one).
             pass.set_bind_group(0, &groups[1 - target], &[]);
+            // Only the texels later passes or the receivers read (the rest: cleared, no seed).
+            let (w, h) = (region.x1 - region.x0, region.y1 - region.y0);
+            pass.set_scissor_rect(region.x0, region.y0, w, h);
             pass.draw(0..3, 0..1);
         }
-        Drawn::calls(jumps as u32 + 1)
+        Drawn {
+            texels,
+            ..Drawn::calls(jumps as u32 + 1)
+        }
     }
 }
 
