@@ -161,18 +161,19 @@ impl ShadowView {
     }
 
     /// Where in the map (uv: 0…1 across, y down, as receivers address it) the points inside
-    /// the box `lo..hi` that the camera `camera` sees can lie: the light's image of the box
-    /// cut to the light's image of the camera's frustum between the depths (along its axis)
-    /// the box spans. Empty (lo > hi on an axis) where the camera sees none of the box; `None`
-    /// where it cannot be told (no map, part of either piece behind the light or the camera).
+    /// the box `lo..hi` that the camera `camera` (world → its clip space, depth 0..1) sees can
+    /// lie: the light's image of the part of the box inside the camera's frustum. Empty
+    /// (lo > hi on an axis) where the camera sees none of the box; `None` where it cannot be
+    /// told (no map, the matrix does not invert, part of it behind the light).
     pub fn seen_box_uv(&self, camera: Mat4, (lo, hi): (Vec3, Vec3)) -> Option<(Vec2, Vec2)> {
         if !(self.drawn && lo.is_finite() && hi.is_finite()) {
             return None;
         }
-        let corners = box_corners(lo, hi);
-        let (box_lo, box_hi) = self.image_of(&corners)?;
-        let (seen_lo, seen_hi) = self.image_of(&seen_part(camera, &corners)?)?;
-        let (lo, hi) = (box_lo.max(seen_lo), box_hi.min(seen_hi));
+        let part = box_in_frustum(camera, lo, hi)?;
+        if part.is_empty() {
+            return Some((Vec2::ONE, Vec2::ZERO));
+        }
+        let (lo, hi) = self.image_of(&part)?;
         // Clip x, y → uv (y flips).
         let uv = |x: f32, y: f32| Vec2::new(0.5 + 0.5 * x, 0.5 - 0.5 * y);
         Some((uv(lo.x, hi.y), uv(hi.x, lo.y)))
@@ -208,6 +209,82 @@ fn box_corners(lo: Vec3, hi: Vec3) -> [Vec3; 8] {
     std::array::from_fn(|k| {
         Vec3::select(glam::BVec3::new(k & 1 != 0, k & 2 != 0, k & 4 != 0), hi, lo)
     })
+}
+
+/// The vertices of the intersection of the box `lo..hi` with the frustum of `camera` (world →
+/// clip space, depth 0..1): the corners of each inside the other and where the edges of each
+/// cross the faces of the other (a convex polytope's vertices are among them, so their hull
+/// is the intersection); empty where they do not meet, `None` where the matrix does not invert.
+fn box_in_frustum(camera: Mat4, lo: Vec3, hi: Vec3) -> Option<Vec<Vec3>> {
+    let inverse = camera.inverse();
+    if !inverse.is_finite() {
+        return None;
+    }
+    // The frustum's inside: w ± x, w ± y, z, w − z all ≥ 0 (a little slack for rounding).
+    let sides = |p: Vec3| {
+        let q = camera * p.extend(1.0);
+        [q.w + q.x, q.w - q.x, q.w + q.y, q.w - q.y, q.z, q.w - q.z]
+    };
+    let in_frustum = |p: Vec3| {
+        let q = camera * p.extend(1.0);
+        let slack = 1e-4 * q.w.abs().max(1e-6);
+        sides(p).iter().all(|&f| f >= -slack)
+    };
+    let size = (hi - lo).max(Vec3::splat(1e-6));
+    let in_box = |p: Vec3| {
+        let e = 1e-4 * size;
+        p.cmpge(lo - e).all() && p.cmple(hi + e).all()
+    };
+    let box_c = box_corners(lo, hi);
+    let frustum_c: [Vec3; 8] = std::array::from_fn(|k| {
+        let ndc = Vec4::new(
+            if k & 1 != 0 { 1.0 } else { -1.0 },
+            if k & 2 != 0 { 1.0 } else { -1.0 },
+            if k & 4 != 0 { 1.0 } else { 0.0 },
+            1.0,
+        );
+        let q = inverse * ndc;
+        q.xyz() / q.w
+    });
+    if frustum_c.iter().any(|p| !p.is_finite()) {
+        return None;
+    }
+    // The twelve edges of a box-like solid of corners indexed by their x, y, z bits.
+    let edges = (0..8usize).flat_map(|a| {
+        [1usize, 2, 4]
+            .into_iter()
+            .filter(move |bit| a & bit == 0)
+            .map(move |bit| (a, a | bit))
+    });
+    let mut out: Vec<Vec3> = box_c.iter().copied().filter(|&p| in_frustum(p)).collect();
+    out.extend(frustum_c.iter().copied().filter(|&p| in_box(p)));
+    for (a, b) in edges.clone() {
+        // The box's edge across the frustum's planes.
+        let (p, q) = (box_c[a], box_c[b]);
+        let (fp, fq) = (sides(p), sides(q));
+        for (u, v) in fp.into_iter().zip(fq) {
+            if (u < 0.0) != (v < 0.0) {
+                let x = p + (q - p) * (u / (u - v));
+                if in_frustum(x) {
+                    out.push(x);
+                }
+            }
+        }
+        // The frustum's edge across the box's planes.
+        let (p, q) = (frustum_c[a], frustum_c[b]);
+        for axis in 0..3 {
+            for plane in [lo[axis], hi[axis]] {
+                let (u, v) = (p[axis] - plane, q[axis] - plane);
+                if (u < 0.0) != (v < 0.0) {
+                    let x = p + (q - p) * (u / (u - v));
+                    if in_box(x) {
+                        out.push(x);
+                    }
+                }
+            }
+        }
+    }
+    Some(out)
 }
 
 /// The eight corners of the camera's frustum cut to the depths along its axis that `points`

@@ -437,11 +437,14 @@ impl Pass for PenumbraPass {
             .and_then(|d| res.subjects.get(d.slot))
             .and_then(|s| s.gpu.posed);
         let uv = posed.and_then(|b| shadow.seen_box_uv(packet.view.view_proj, b));
-        let region = receivers(uv, self.size, shadow.size);
+        let region = if std::env::var_os("PENUMBRA_FULL").is_some() { Region::full(self.size) } else { receivers(uv, self.size, shadow.size) };
         if region.texels() == 0 {
             return PassFrame::default();
         }
         self.regions[copy] = region;
+        if std::env::var_os("PENUMBRA_DEBUG").is_some() {
+            eprintln!("penumbra: width {:.4} m texel {:.3} mm region {:?} jumps {} diffusion {} reach {}", shadow.width_m(), shadow.texel_m * 1000.0, region, jumps, diffusion, reach);
+        }
         if self.written[copy] != Some((jumps, gap)) {
             // Every pass's constants in one write (each write stages a buffer of its own).
             let mut slots = [0u8; SLOT as usize * MAX_PASSES];
