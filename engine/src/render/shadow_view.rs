@@ -331,6 +331,63 @@ mod tests {
     }
 
     #[test]
+    fn receivers_lie_where_the_light_sees_the_box_the_camera_sees() {
+        // A 0.6 × 1.8 × 0.4 m figure lit from the side and above; its map fitted to it.
+        let (lo, hi) = (Vec3::new(-0.3, 0.0, -0.2), Vec3::new(0.3, 1.8, 0.2));
+        let light = Vec3::new(2.0, 3.0, 1.0);
+        let (centre, radius) = (0.5 * (lo + hi), 0.5 * (hi - lo).length());
+        let v = ShadowView::fit(light, centre, radius, 1024);
+        let area = |(a, b): (Vec2, Vec2)| (b - a).max(Vec2::ZERO).element_product();
+        let camera = |eye: Vec3, at: Vec3| crate::camera::look_at(eye, at, 0.6, 16.0 / 9.0);
+        // The whole figure in view: its whole image.
+        let whole = v.seen_box_uv(
+            camera(Vec3::new(0.0, 1.0, 5.0), Vec3::new(0.0, 0.9, 0.0)),
+            (lo, hi),
+        );
+        let whole = whole.expect("a rectangle");
+        let corners = box_corners(lo, hi);
+        let uv = |p: Vec3| {
+            let q = project(&v, p);
+            Vec2::new(0.5 + 0.5 * q.x, 0.5 - 0.5 * q.y)
+        };
+        for c in corners {
+            let p = uv(c);
+            assert!(
+                p.cmpge(whole.0 - 1e-4).all() && p.cmple(whole.1 + 1e-4).all(),
+                "{p} {whole:?}"
+            );
+        }
+        // A close-up of the head: a part of it, which holds the head's image.
+        let head = camera(Vec3::new(0.0, 1.65, 0.6), Vec3::new(0.0, 1.6, 0.0));
+        let part = v.seen_box_uv(head, (lo, hi)).expect("a rectangle");
+        assert!(area(part) < 0.6 * area(whole), "{part:?} {whole:?}");
+        for p in [
+            Vec3::new(0.0, 1.6, 0.1),
+            Vec3::new(0.1, 1.7, 0.0),
+            Vec3::new(-0.1, 1.55, 0.15),
+        ] {
+            let p = uv(p);
+            assert!(
+                p.cmpge(part.0).all() && p.cmple(part.1).all(),
+                "{p} {part:?}"
+            );
+        }
+        // Looking away: nothing; from inside the box: something.
+        let away = v.seen_box_uv(
+            camera(Vec3::new(0.0, 1.0, 5.0), Vec3::new(0.0, 1.0, 10.0)),
+            (lo, hi),
+        );
+        assert_eq!(away.map(area), Some(0.0));
+        let inside = v.seen_box_uv(
+            camera(Vec3::new(0.0, 1.0, 0.0), Vec3::new(0.0, 1.0, 1.0)),
+            (lo, hi),
+        );
+        assert!(inside.map(area).unwrap_or(0.0) > 0.0);
+        // No map: not known.
+        assert!(ShadowView::NONE.seen_box_uv(head, (lo, hi)).is_none());
+    }
+
+    #[test]
     fn the_frustum_holds_the_casters_sphere() {
         for (light, r) in [
             (Vec3::new(1.5, 3.0, 2.5), 1.0),

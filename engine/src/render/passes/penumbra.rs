@@ -7,13 +7,15 @@
 //! material carries it — also far beyond what a few filter taps reach.
 //!
 //! Built only where the scene reaches such a model; run only in frames that draw one with a
-//! shadow map. Cost: one seed pass (21 gathers and 108 slope tests per grid texel) and as
+//! shadow map. Cost: one seed pass (16 gathers and 72 slope tests per grid texel) and as
 //! many jump passes (nine loads each) as the material's reach needs — [`reach_for`]: a dozen
-//! diffusion lengths, at most [`REACH_MM`]; distances beyond are never read — over the grid:
-//! 128² for the game's 1024² map (skin1 over the whole runner: 2 jump passes; the showroom's
-//! close-up: 3), independent of the screen. Not run where even the subject's nearest pixels
-//! are wider than the material's spread ([`subject_resolves`]: the runner at the follow
-//! camera).
+//! diffusion lengths, at most [`REACH_MM`]; distances beyond are never read — over the part
+//! of the grid the receivers read: the light's image of the subject's part inside the
+//! camera's frustum ([`receivers`]), the seed pass grown by what the jumps carry and each
+//! jump by what the later ones read ([`pass_regions`]; a scissor, the rest cleared: no
+//! seed). The game's 1024² map has a 128² grid (skin1 over the whole runner: 2 jump passes;
+//! the showroom's close-up: 3). Not run where even the subject's nearest pixels are wider
+//! than the material's spread ([`subject_resolves`]: the runner at the follow camera).
 
 use super::{Access, BuildCtx, Declared, Pass, Target};
 use crate::render::layouts;
@@ -437,14 +439,11 @@ impl Pass for PenumbraPass {
             .and_then(|d| res.subjects.get(d.slot))
             .and_then(|s| s.gpu.posed);
         let uv = posed.and_then(|b| shadow.seen_box_uv(packet.view.view_proj, b));
-        let region = if std::env::var_os("PENUMBRA_FULL").is_some() { Region::full(self.size) } else { receivers(uv, self.size, shadow.size) };
+        let region = receivers(uv, self.size, shadow.size);
         if region.texels() == 0 {
             return PassFrame::default();
         }
         self.regions[copy] = region;
-        if std::env::var_os("PENUMBRA_DEBUG").is_some() {
-            eprintln!("penumbra: width {:.4} m texel {:.3} mm region {:?} jumps {} diffusion {} reach {}", shadow.width_m(), shadow.texel_m * 1000.0, region, jumps, diffusion, reach);
-        }
         if self.written[copy] != Some((jumps, gap)) {
             // Every pass's constants in one write (each write stages a buffer of its own).
             let mut slots = [0u8; SLOT as usize * MAX_PASSES];
@@ -566,6 +565,59 @@ mod tests {
         // Never beyond the table's span.
         assert_eq!(jump_steps(128, 2.1, 1e4).count(), jumps(128, 2.1).len());
         assert!(steps_of(1 << 16).len() < MAX_PASSES);
+    }
+
+    #[test]
+    fn the_passes_cover_what_the_receivers_read_and_what_reaches_them() {
+        // No rectangle known: the whole grid; an empty one: nothing.
+        assert_eq!(receivers(None, 128, 1024), Region::full(128));
+        let empty = Some((Vec2::new(0.6, 0.2), Vec2::new(0.4, 0.3)));
+        assert_eq!(receivers(empty, 128, 1024).texels(), 0);
+        // Every grid texel the rectangle touches, once grown by the test's ramp.
+        let r = receivers(
+            Some((Vec2::new(0.25, 0.5), Vec2::new(0.5, 0.75))),
+            128,
+            1024,
+        );
+        assert_eq!(
+            r,
+            Region {
+                x0: 31,
+                y0: 63,
+                x1: 65,
+                y1: 97
+            }
+        );
+        // Kept to the grid.
+        let all = receivers(Some((Vec2::splat(-1.0), Vec2::splat(2.0))), 128, 1024);
+        assert_eq!(all, Region::full(128));
+        // The seed pass over what the jumps 4 + 2 + 1 carry, each jump over what the later
+        // ones read, the last over the receivers' texels alone.
+        let passes: Vec<Region> = pass_regions(r, &[4, 2, 1], 128).collect();
+        let grown = |by: u32| Region {
+            x0: r.x0 - by,
+            y0: r.y0 - by,
+            x1: r.x1 + by,
+            y1: r.y1 + by,
+        };
+        assert_eq!(passes, vec![grown(7), grown(3), grown(1), r]);
+        // At the grid's edge the growth stops there.
+        let corner = Region {
+            x0: 0,
+            y0: 2,
+            x1: 10,
+            y1: 128,
+        };
+        assert_eq!(
+            corner.grown(3, 128),
+            Region {
+                x0: 0,
+                y0: 0,
+                x1: 13,
+                y1: 128
+            }
+        );
+        assert_eq!(Region::EMPTY.grown(3, 128).texels(), 0);
     }
 
     #[test]
