@@ -6,8 +6,10 @@
 //! with how many jump passes, and the whole frame's GPU time (every pass: shadow map, penumbra
 //! map, scene, subsurface, UI) as a ratio to `ward`'s with a 95 % CI. With Mali cycles
 //! (`--mali`), each one-pass model's price per skin pixel at each framing: its fragment
-//! shader plus the frame's penumbra passes spread over the skin (the shadow map, drawn for
-//! every model alike, is not counted: the ratio to `ward` is the stricter for it).
+//! shader plus the frame's penumbra passes spread over the skin — each pass's cycles per
+//! texel times the texels it shaded in that frame, as the renderer counted them
+//! (`RenderStats::texels`) — and, for the penumbra tier, those parts apart (the shadow map,
+//! drawn for every model alike, is not counted: the ratio to `ward` is the stricter for it).
 
 use dermis_engine::render::passes::NAMES as PASS_NAMES;
 use dermis_engine::render::{
