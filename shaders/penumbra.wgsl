@@ -5,10 +5,12 @@
 // material's diffusion profile (a LUT model: the edge-spread function in its LUT).
 //
 // Seed pass: a grid texel (a block of PENUMBRA_BLOCK² map texels) is a seed when a caster's
-// edge lies in its block or on its one-texel border: a depth step that breaks the local slope
-// by more than a gap (see `line`), on one of six rows and six columns of the block (three
-// pairs of neighbouring lines, two lines between pairs, so that 21 gathers serve them all);
-// its depth is the edge's near side. Jump flooding (Rong & Tan 2006): passes with halving steps each keep the nearest seed
+// edge crosses its block's border: a depth step that breaks the local slope by more than a
+// gap (see `line`) on one of the border's rows and columns (block texels −1, 0 and 7, 8: two
+// pairs of neighbouring lines each way, so that 16 gathers serve them all); its depth is the
+// edge's near side. An outline that meets the block crosses its border unless it lies
+// wholly inside it (a caster's image under 8 texels across, whose shadow edge then keeps
+// the plain test). Jump flooding (Rong & Tan 2006): passes with halving steps each keep the nearest seed
 // among nine texels a step apart. Loops are written out, so a static cycle count sees every
 // fetch.
 //
@@ -91,8 +93,7 @@ fn fs_seed(@builtin(position) at: vec4<f32>) -> @location(0) vec4<f32> {
     // A gather at the corner o + (2i, 2j) texels holds block texels 2i − 1, 2i across and
     // 2j − 1, 2j down (.w .z the upper pair, .x .y the lower). Lines over the block and its
     // one-texel border (texels −1…8; a step into a neighbour's block seeds both): the rows
-    // −1, 0, 3, 4, 7, 8 and the same columns, three gathers' pairs each way; an outline that
-    // crosses the block over more than three texels crosses one of them.
+    // −1, 0, 7, 8 and the same columns, two gathers' pairs each way.
     let o = centre - 4.0 * vec2<f32>(texel);
     let g = array<vec2<f32>, 5>(o, o + vec2<f32>(2.0 * texel), o + vec2<f32>(4.0 * texel),
                                 o + vec2<f32>(6.0 * texel), o + vec2<f32>(8.0 * texel));
@@ -102,11 +103,6 @@ fn fs_seed(@builtin(position) at: vec4<f32>) -> @location(0) vec4<f32> {
         textureGather(depth_map, depth_sampler, vec2<f32>(g[2].x, g[0].y)),
         textureGather(depth_map, depth_sampler, vec2<f32>(g[3].x, g[0].y)),
         textureGather(depth_map, depth_sampler, vec2<f32>(g[4].x, g[0].y)));
-    z = rows(z, textureGather(depth_map, depth_sampler, vec2<f32>(g[0].x, g[2].y)),
-        textureGather(depth_map, depth_sampler, vec2<f32>(g[1].x, g[2].y)),
-        textureGather(depth_map, depth_sampler, vec2<f32>(g[2].x, g[2].y)),
-        textureGather(depth_map, depth_sampler, vec2<f32>(g[3].x, g[2].y)),
-        textureGather(depth_map, depth_sampler, vec2<f32>(g[4].x, g[2].y)));
     z = rows(z, textureGather(depth_map, depth_sampler, vec2<f32>(g[0].x, g[4].y)),
         textureGather(depth_map, depth_sampler, vec2<f32>(g[1].x, g[4].y)),
         textureGather(depth_map, depth_sampler, vec2<f32>(g[2].x, g[4].y)),
@@ -117,11 +113,6 @@ fn fs_seed(@builtin(position) at: vec4<f32>) -> @location(0) vec4<f32> {
         textureGather(depth_map, depth_sampler, vec2<f32>(g[0].x, g[2].y)),
         textureGather(depth_map, depth_sampler, vec2<f32>(g[0].x, g[3].y)),
         textureGather(depth_map, depth_sampler, vec2<f32>(g[0].x, g[4].y)));
-    z = columns(z, textureGather(depth_map, depth_sampler, vec2<f32>(g[2].x, g[0].y)),
-        textureGather(depth_map, depth_sampler, vec2<f32>(g[2].x, g[1].y)),
-        textureGather(depth_map, depth_sampler, vec2<f32>(g[2].x, g[2].y)),
-        textureGather(depth_map, depth_sampler, vec2<f32>(g[2].x, g[3].y)),
-        textureGather(depth_map, depth_sampler, vec2<f32>(g[2].x, g[4].y)));
     z = columns(z, textureGather(depth_map, depth_sampler, vec2<f32>(g[4].x, g[0].y)),
         textureGather(depth_map, depth_sampler, vec2<f32>(g[4].x, g[1].y)),
         textureGather(depth_map, depth_sampler, vec2<f32>(g[4].x, g[2].y)),
