@@ -27,22 +27,24 @@ fn slab_u(t_mm: f32) -> f32 {
     return (log2(max(t_mm, SLAB_FIRST_MM)) - log2(SLAB_FIRST_MM)) * (1.0 / LUT_SLAB_SPAN);
 }
 
-// The key light's visibility past the terminator (n·l < 0; `v` the surface's test). The
-// sphere rows hold light that entered the ball of radius ρ on its lit side, where the ray
-// toward the light leaves it, 2ρ|n·l| along l: that point is tested. A part thinner than its
-// ball (an ear) was lit on its far side, where the surface's own test looked. Both points lie
-// on the ray toward the light, which the light's map sees as one texel: the surface's own
-// coordinate serves, at the point's depth (one bilinear comparison).
+// The key light's visibility past the terminator (n·l < 0; `v` the surface's test), for the
+// sphere rows' wrap and the translucency alike: tested where the light entered, on the ray
+// toward the light, as far as it ran through matter (`sss_back_path_mm`: the chord 2ρ|n·l|
+// through the ball of the surface's curvature, or the slab's path t/|n·l| through a part
+// thinner than its ball — an ear). Never further: where the light grazes a crease (n·l → 0⁻)
+// the slab's path alone runs centimetres out, past whatever shadows the crease, and its
+// pixels lit one by one in the shadow. The ray toward the light is one texel of the light's
+// map: the surface's own coordinate serves, at that point's depth (one bilinear comparison).
 fn wrap_visibility(s: Surface, v: f32) -> f32 {
     let back = -dot(s.n, s.l);
-    let ball = 2.0 * s.curvature_radius;
+    let path = sss_back_path_mm(s, max(back, 0.0)) * (1.0 / MM_PER_M);
     let m = frame.shadow_view_proj;
-    let p = vec4<f32>(s.pos + s.l * (ball * back + frame.shadow_normal_offset), 1.0);
+    let p = vec4<f32>(s.pos + s.l * (path + frame.shadow_normal_offset), 1.0);
     let z = dot(vec4<f32>(m[0].z, m[1].z, m[2].z, m[3].z), p);
     let w = dot(vec4<f32>(m[0].w, m[1].w, m[2].w, m[3].w), p);
     let depth = min(z / max(w, 1e-20), 1.0);
-    let ball_side = textureSampleCompareLevel(shadow_map, shadow_sampler, s.shadow_coord.xy, depth - frame.shadow_bias);
-    return select(v, ball_side, back > 0.0 && s.thickness >= ball && s.shadow_coord.w > 0.5);
+    let entered = textureSampleCompareLevel(shadow_map, shadow_sampler, s.shadow_coord.xy, depth - frame.shadow_bias);
+    return select(v, entered, back > 0.0 && s.shadow_coord.w > 0.5);
 }
 
 // The key light's visibility per channel, as log2 per channel (.rgb) and a factor (.a), so the
@@ -104,15 +106,17 @@ fn shade(s: Surface) -> vec3<f32> {
     // Translucency (subsurface.wgsl's, with its Fresnel and slab tables read from the LUT)
     // beyond what the sphere rows already carry: they hold the light that crosses a ball of
     // radius ρ, whose chord along the light here is 2ρ·back, so only a part thinner than its
-    // curvature implies (an ear, a finger) adds the difference of the two slabs.
+    // curvature implies (an ear, a finger) adds the difference of the two slabs, lit as the
+    // wrap is (`lit.a`: past the terminator it is `wrap_visibility`).
     let back = max(-dot(s.n, s.l), 0.0);
     let entry = lut_row(back, LUT_CURVATURE_ROWS).g;
     let slab = lut_row(slab_u(sss_back_path_mm(s, back)), LUT_CURVATURE_ROWS + 1.0).rgb;
     let ball = lut_row(slab_u(sss_chord_mm(s, back)), LUT_CURVATURE_ROWS + 1.0).rgb;
-    let through = back * entry * max(slab - ball, vec3<f32>(0.0));
+    let through = back * entry * max(slab - ball, vec3<f32>(0.0)) * lit.a;
     let ambient = PI * frame.ambient * model.uniform_albedo;
     // A pigmented texel: its factor in and out (one pass sees only this texel), t² =
     // albedo / the medium's (`sss_pigment`'s square, without its root).
     let t2 = select(vec3<f32>(1.0), max(s.albedo, vec3<f32>(0.0)) / max(model.uniform_albedo, vec3<f32>(1e-6)), s.pigmented);
-    return exit * t2 * (ambient + response + irradiance(s) * through);
+    let unshadowed = frame.light_intensity * frame.light_color / (s.light_dist * s.light_dist);
+    return exit * t2 * (ambient + response + unshadowed * through);
 }
