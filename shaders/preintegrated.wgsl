@@ -28,23 +28,14 @@ fn slab_u(t_mm: f32) -> f32 {
 }
 
 // The key light's visibility past the terminator (n·l < 0; `v` the surface's test), for the
-// sphere rows' wrap and the translucency alike: tested where the light entered, on the ray
-// toward the light, as far as it ran through matter (`sss_back_path_mm`: the chord 2ρ|n·l|
+// sphere rows' wrap and the translucency alike: where the light entered, as far along the
+// ray toward the light as it ran through matter (`sss_back_path_mm`: the chord 2ρ|n·l|
 // through the ball of the surface's curvature, or the slab's path t/|n·l| through a part
-// thinner than its ball — an ear). Never further: where the light grazes a crease (n·l → 0⁻)
-// the slab's path alone runs centimetres out, past whatever shadows the crease, and its
-// pixels lit one by one in the shadow. The ray toward the light is one texel of the light's
-// map: the surface's own coordinate serves, at that point's depth (one bilinear comparison).
+// thinner than its ball — an ear; `entry_visibility`).
 fn wrap_visibility(s: Surface, v: f32) -> f32 {
     let back = -dot(s.n, s.l);
     let path = sss_back_path_mm(s, max(back, 0.0)) * (1.0 / MM_PER_M);
-    let m = frame.shadow_view_proj;
-    let p = vec4<f32>(s.pos + s.l * (path + frame.shadow_normal_offset), 1.0);
-    let z = dot(vec4<f32>(m[0].z, m[1].z, m[2].z, m[3].z), p);
-    let w = dot(vec4<f32>(m[0].w, m[1].w, m[2].w, m[3].w), p);
-    let depth = min(z / max(w, 1e-20), 1.0);
-    let entered = textureSampleCompareLevel(shadow_map, shadow_sampler, s.shadow_coord.xy, depth - frame.shadow_bias);
-    return select(v, entered, back > 0.0 && s.shadow_coord.w > 0.5);
+    return select(v, entry_visibility(s, path, v), back > 0.0);
 }
 
 // The key light's visibility per channel, as log2 per channel (.rgb) and a factor (.a), so the
@@ -117,6 +108,5 @@ fn shade(s: Surface) -> vec3<f32> {
     // A pigmented texel: its factor in and out (one pass sees only this texel), t² =
     // albedo / the medium's (`sss_pigment`'s square, without its root).
     let t2 = select(vec3<f32>(1.0), max(s.albedo, vec3<f32>(0.0)) / max(model.uniform_albedo, vec3<f32>(1e-6)), s.pigmented);
-    let unshadowed = frame.light_intensity * frame.light_color / (s.light_dist * s.light_dist);
-    return exit * t2 * (ambient + response + unshadowed * through);
+    return exit * t2 * (ambient + response + unshadowed_irradiance(s) * through);
 }
