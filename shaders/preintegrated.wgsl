@@ -93,7 +93,12 @@ fn shade(s: Surface) -> vec3<f32> {
     // The rows hold log2 M (an exponential fall-off past the terminator interpolates exactly).
     let log_m = textureSampleLevel(lut, lut_sampler, vec2<f32>(0.5 * (mu + 1.0), v_tex), 0.0).rgb;
     let light = frame.light_intensity * frame.light_color * (lit.a * MM_PER_M * MM_PER_M);
-    let response = exp2(log_m + lit.rgb) * light / d2;
+    // On a flat lit side the response is ∝ the cosine, so each channel takes its own lifted
+    // cosine μ_c over the fetch's μ (red's lift is the longest: its shared cosine was too
+    // small off-axis); towards the terminator, where the sphere rows are not ∝ μ, it fades out.
+    let mu_c = (h + lift) * inverseSqrt(d2);
+    let own = 1.0 + saturate(10.0 * mu) * (clamp(mu_c / max(mu, 1e-3), vec3<f32>(0.0), vec3<f32>(2.0)) - 1.0);
+    let response = exp2(log_m + lit.rgb) * light * own / d2;
     // Translucency (subsurface.wgsl's, with its Fresnel and slab tables read from the LUT)
     // beyond what the sphere rows already carry: they hold the light that crosses a ball of
     // radius ρ, whose chord along the light here is 2ρ·back, so only a part thinner than its
