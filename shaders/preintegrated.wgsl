@@ -95,9 +95,9 @@ fn shade(s: Surface) -> vec3<f32> {
     let light = frame.light_intensity * frame.light_color * (lit.a * MM_PER_M * MM_PER_M);
     // On a flat lit side the response is ∝ the cosine, so each channel takes its own lifted
     // cosine μ_c over the fetch's μ (red's lift is the longest: its shared cosine was too
-    // small off-axis); towards the terminator, where the sphere rows are not ∝ μ, it fades out.
+    // small off-axis); near the terminator (μ ≤ 0.1), where the sphere rows are not ∝ μ, not.
     let mu_c = (h + lift) * inverseSqrt(d2);
-    let own = 1.0 + saturate(10.0 * mu) * (clamp(mu_c / max(mu, 1e-3), vec3<f32>(0.0), vec3<f32>(2.0)) - 1.0);
+    let own = select(vec3<f32>(1.0), mu_c / mu, mu > 0.1);
     let response = exp2(log_m + lit.rgb) * light * own / d2;
     // Translucency (subsurface.wgsl's, with its Fresnel and slab tables read from the LUT)
     // beyond what the sphere rows already carry: they hold the light that crosses a ball of
