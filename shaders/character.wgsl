@@ -68,14 +68,10 @@ fn surface_at(in: VertexOut, albedo: vec3<f32>, front: bool) -> Surface {
     normal = select(-normal, normal, front);
 #endif
     var s = make_surface(in.world_pos, normal, in.tangent, albedo, in.thickness);
-    // The mesh's curvature along the light (vs_main). A concave part's lit side loses light
-    // round its terminator as a ball's of its radius does (the face bench: 0.023 → 0.022
-    // front, 0.029 → 0.028 side, 0.149 → 0.146 back); its far side stays flat, with no
-    // wrap: the light it would take crosses the crease's lit wall, and the ball's test along
-    // the light (`wrap_visibility`) lands past that wall (a bright line down the nose's
-    // crease in the nose's shadow). A flat part is flat.
-    let k = select(in.curvature, -in.curvature, in.curvature < 0.0 && dot(s.n, s.l) > 0.0);
-    s.curvature_radius = 1.0 / max(k, 1.0 / FLAT_RADIUS_M);
+    // The mesh's curvature along the light (vs_main); a concave or flat part is flat. (A
+    // concave part's lit side taken as a ball of its radius scored 0.001 better on the face
+    // bench for 0.09 G52 cycles: the affordable tier's price could not take it.)
+    s.curvature_radius = 1.0 / max(in.curvature, 1.0 / FLAT_RADIUS_M);
     return s;
 }
 

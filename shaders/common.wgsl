@@ -34,8 +34,8 @@ struct Surface {
     pigmented: bool,
     // Material thickness through this point (m).
     thickness: f32,
-    // Radius of curvature of the surface here (m: the mesh's curvature along the light, and
-    // a concave part's on its lit side); FLAT_RADIUS_M where unknown or flat.
+    // Radius of curvature of the surface here (m: the mesh's curvature along the light);
+    // FLAT_RADIUS_M where unknown, flat or concave.
     curvature_radius: f32,
 };
 
