@@ -34,8 +34,8 @@ struct Surface {
     pigmented: bool,
     // Material thickness through this point (m).
     thickness: f32,
-    // Radius of curvature of the surface here (m: the mesh's mean curvature); FLAT_RADIUS_M
-    // where unknown, flat or concave.
+    // Radius of curvature of the surface here (m: the mesh's curvature along the light);
+    // FLAT_RADIUS_M where unknown, flat or concave.
     curvature_radius: f32,
 };
 
@@ -73,6 +73,21 @@ fn light_visible_coord(c: vec4<f32>) -> f32 {
         + textureSampleCompareLevel(shadow_map, shadow_sampler, c.xy + vec2<f32>(h, -h), z)
         + textureSampleCompareLevel(shadow_map, shadow_sampler, c.xy + vec2<f32>(-h, h), z)
         + textureSampleCompareLevel(shadow_map, shadow_sampler, c.xy + vec2<f32>(h, h), z));
+}
+
+// The key light's visibility where light seen at a point past its terminator entered the
+// matter: on the ray toward the light, `path` (m) from the point — as far as the light ran
+// through matter to it, never further (a crease the light grazes, tested centimetres out,
+// landed past whatever shadows it). The ray is one texel of the light's map: the point's own
+// coordinate serves, at that depth (one bilinear comparison). `v` where no map covers it.
+fn entry_visibility(s: Surface, path: f32, v: f32) -> f32 {
+    let m = frame.shadow_view_proj;
+    let p = vec4<f32>(s.pos + s.l * (path + frame.shadow_normal_offset), 1.0);
+    let z = dot(vec4<f32>(m[0].z, m[1].z, m[2].z, m[3].z), p);
+    let w = dot(vec4<f32>(m[0].w, m[1].w, m[2].w, m[3].w), p);
+    let depth = min(z / max(w, 1e-20), 1.0);
+    let entered = textureSampleCompareLevel(shadow_map, shadow_sampler, s.shadow_coord.xy, depth - frame.shadow_bias);
+    return select(v, entered, s.shadow_coord.w > 0.5);
 }
 
 // The key light's visibility at `p`, moved off its surface by `offset` (see shadow_coord).
@@ -123,6 +138,11 @@ fn make_surface(pos: vec3<f32>, normal: vec3<f32>, tangent: vec4<f32>, albedo: v
 // Irradiance at normal incidence from the point light (inverse square).
 fn irradiance(s: Surface) -> vec3<f32> {
     return s.light / (s.light_dist * s.light_dist);
+}
+
+// The same before the shadow test.
+fn unshadowed_irradiance(s: Surface) -> vec3<f32> {
+    return frame.light_intensity * frame.light_color / (s.light_dist * s.light_dist);
 }
 
 // Narkowicz's fit of the ACES filmic curve.

@@ -27,22 +27,14 @@ fn slab_u(t_mm: f32) -> f32 {
     return (log2(max(t_mm, SLAB_FIRST_MM)) - log2(SLAB_FIRST_MM)) * (1.0 / LUT_SLAB_SPAN);
 }
 
-// The key light's visibility past the terminator (n·l < 0; `v` the surface's test). The
-// sphere rows hold light that entered the ball of radius ρ on its lit side, where the ray
-// toward the light leaves it, 2ρ|n·l| along l: that point is tested. A part thinner than its
-// ball (an ear) was lit on its far side, where the surface's own test looked. Both points lie
-// on the ray toward the light, which the light's map sees as one texel: the surface's own
-// coordinate serves, at the point's depth (one bilinear comparison).
-fn wrap_visibility(s: Surface, v: f32) -> f32 {
-    let back = -dot(s.n, s.l);
-    let ball = 2.0 * s.curvature_radius;
-    let m = frame.shadow_view_proj;
-    let p = vec4<f32>(s.pos + s.l * (ball * back + frame.shadow_normal_offset), 1.0);
-    let z = dot(vec4<f32>(m[0].z, m[1].z, m[2].z, m[3].z), p);
-    let w = dot(vec4<f32>(m[0].w, m[1].w, m[2].w, m[3].w), p);
-    let depth = min(z / max(w, 1e-20), 1.0);
-    let ball_side = textureSampleCompareLevel(shadow_map, shadow_sampler, s.shadow_coord.xy, depth - frame.shadow_bias);
-    return select(v, ball_side, back > 0.0 && s.thickness >= ball && s.shadow_coord.w > 0.5);
+// The key light's visibility past the terminator (n·l < 0; `v` the surface's test), for the
+// sphere rows' wrap and the translucency alike: where the light entered, as far along the
+// ray toward the light as it ran through matter (`sss_back_path_mm`: the chord 2ρ|n·l|
+// through the ball of the surface's curvature, or the slab's path t/|n·l| through a part
+// thinner than its ball — an ear; `entry_visibility`).
+// (`back` = max(−n·l, 0), `path_mm` that path: the caller's.)
+fn wrap_visibility(s: Surface, v: f32, back: f32, path_mm: f32) -> f32 {
+    return select(v, entry_visibility(s, path_mm * (1.0 / MM_PER_M), v), back > 0.0);
 }
 
 // The key light's visibility per channel, as log2 per channel (.rgb) and a factor (.a), so the
@@ -51,11 +43,11 @@ fn wrap_visibility(s: Surface, v: f32) -> f32 {
 // point's signed distance from that edge (the penumbra map gives the nearest edge of a caster
 // in front of the point; within the test's ramp its fraction places the edge more
 // finely): light bleeds into the shadow as far as the material carries it, red furthest.
-fn penumbra(s: Surface, v: f32) -> vec4<f32> {
+fn penumbra(s: Surface, v: f32, back: f32, path_mm: f32) -> vec4<f32> {
     let nl = dot(s.n, s.l);
     let c = s.shadow_coord;
     if (frame.penumbra_drawn == 0u || nl <= 0.0 || c.w < 0.5) {
-        return vec4<f32>(0.0, 0.0, 0.0, wrap_visibility(s, v));
+        return vec4<f32>(0.0, 0.0, 0.0, wrap_visibility(s, v, back, path_mm));
     }
     // (c.xy = 1 lands one past the grid's last texel: the load is kept to the grid, or reads
     // no seed.)
@@ -94,25 +86,33 @@ fn shade(s: Surface) -> vec3<f32> {
     // The light before its shadow test (s.light carries the hard test; with no map it is
     // 1), so the response can take the penumbra's per-channel visibility instead;
     // translucency keeps the hard test, made where it enters on the far side.
-    let lit = penumbra(s, s.visibility);
+    let back = max(-dot(s.n, s.l), 0.0);
+    let path = sss_back_path_mm(s, back);
+    let lit = penumbra(s, s.visibility, back, path);
     // The sphere response M/E_beam: u = (n·l + 1)/2, times the visibility and the irradiance
     // at normal incidence E = I/d² (mm: its d² cancels the lift's).
     // The rows hold log2 M (an exponential fall-off past the terminator interpolates exactly).
     let log_m = textureSampleLevel(lut, lut_sampler, vec2<f32>(0.5 * (mu + 1.0), v_tex), 0.0).rgb;
     let light = frame.light_intensity * frame.light_color * (lit.a * MM_PER_M * MM_PER_M);
-    let response = exp2(log_m + lit.rgb) * light / d2;
+    // On a flat lit side the response is ∝ the cosine, so each channel takes its own lifted
+    // cosine μ_c over the fetch's μ (red's lift is the longest: its shared cosine was too
+    // small off-axis); near the terminator (μ ≤ 0.1), where the sphere rows are not ∝ μ, not.
+    let mu_c = (h + lift) * inverseSqrt(d2);
+    let own = select(vec3<f32>(1.0), mu_c / mu, mu > 0.1);
+    let response = exp2(log_m + lit.rgb) * own / d2;
     // Translucency (subsurface.wgsl's, with its Fresnel and slab tables read from the LUT)
     // beyond what the sphere rows already carry: they hold the light that crosses a ball of
     // radius ρ, whose chord along the light here is 2ρ·back, so only a part thinner than its
-    // curvature implies (an ear, a finger) adds the difference of the two slabs.
-    let back = max(-dot(s.n, s.l), 0.0);
+    // curvature implies (an ear, a finger) adds the difference of the two slabs, lit as the
+    // wrap is (`lit.a`: past the terminator it is `wrap_visibility`).
+    // (Its irradiance I/d² in mm, as the response's.)
     let entry = lut_row(back, LUT_CURVATURE_ROWS).g;
-    let slab = lut_row(slab_u(sss_back_path_mm(s, back)), LUT_CURVATURE_ROWS + 1.0).rgb;
+    let slab = lut_row(slab_u(path), LUT_CURVATURE_ROWS + 1.0).rgb;
     let ball = lut_row(slab_u(sss_chord_mm(s, back)), LUT_CURVATURE_ROWS + 1.0).rgb;
-    let through = back * entry * max(slab - ball, vec3<f32>(0.0));
+    let through = (back * entry / (d * d)) * max(slab - ball, vec3<f32>(0.0));
     let ambient = PI * frame.ambient * model.uniform_albedo;
     // A pigmented texel: its factor in and out (one pass sees only this texel), t² =
     // albedo / the medium's (`sss_pigment`'s square, without its root).
     let t2 = select(vec3<f32>(1.0), max(s.albedo, vec3<f32>(0.0)) / max(model.uniform_albedo, vec3<f32>(1e-6)), s.pigmented);
-    return exit * t2 * (ambient + response + irradiance(s) * through);
+    return exit * t2 * (ambient + (response + through) * light);
 }

@@ -106,7 +106,8 @@ fn load_lights(dir: &Path, scene: &FaceScene) -> Result<Vec<Light>, String> {
     Ok(lights)
 }
 
-/// One model under one light: strict and wide mean |ln|, and the strict channels.
+/// One model under one light: strict and wide mean |ln| (NaN: no block scored), and the
+/// strict channels.
 #[derive(Clone, Copy)]
 struct Cell {
     strict: f64,
@@ -218,11 +219,13 @@ pub fn run(args: &FaceArgs, dir: &Path) -> Result<(), String> {
                 light.truth.record.intensity,
             )?;
             let image = FloatImage::new(w, h, pixels)?;
-            let strict = reference.score(&image)?;
+            // A light whose truth admits no block (one from below and behind lights
+            // nothing the camera sees) has no score (and does not count).
+            let (strict, broad) = (reference.score(&image).ok(), wide.score(&image).ok());
             cells[k].push(Cell {
-                strict: strict.mean_abs_ln,
-                wide: wide.score(&image)?.mean_abs_ln,
-                channels: strict.count,
+                strict: strict.map_or(f64::NAN, |s| s.mean_abs_ln),
+                wide: broad.map_or(f64::NAN, |s| s.mean_abs_ln),
+                channels: strict.map_or(0, |s| s.count),
             });
             if let Some(sheet) = &mut sheets[k] {
                 sheet.paste(i, 0, (w, h, &tone_map(&image, exposure)));
@@ -318,7 +321,11 @@ fn markdown(lights: &[Light], cells: &[Vec<Cell>]) -> String {
                 (true, true) => " ✓",
                 (true, false) => "",
             };
-            md += &format!(" {:.3} / {:.3}{mark} |", c.strict, c.wide);
+            let score = |v: f64| match v.is_nan() {
+                true => "–".to_string(),
+                false => format!("{v:.3}"),
+            };
+            md += &format!(" {} / {}{mark} |", score(c.strict), score(c.wide));
         }
         md += "\n";
     }
