@@ -31,6 +31,18 @@ fn tolerance(entry: &ground_truth::Entry, model_error: f64) -> f64 {
     model_error + 3.0 * noise
 }
 
+/// `model`'s image of the reference scene `entry` in material `m`.
+fn render(
+    (gpu, probe): (&Gpu, &mut SceneRenderer),
+    model: ShadingModel,
+    m: &Material,
+    entry: &ground_truth::Entry,
+) -> Vec<[f64; 3]> {
+    probe
+        .render(gpu, model, m, &entry.scene, &entry.edges)
+        .unwrap_or_else(|e| panic!("{}: {e}", model.name()))
+}
+
 #[test]
 fn the_measured_profile_matches_path_traced_point_lights() {
     let gpu = gpu();
@@ -41,18 +53,8 @@ fn the_measured_profile_matches_path_traced_point_lights() {
         let entry = set
             .entry(&Scene::PointLight { h_mm: h })
             .expect("reference has the point light");
-        let tab = probe
-            .render(
-                &gpu,
-                ShadingModel::Tabulated,
-                &m,
-                &entry.scene,
-                &entry.edges,
-            )
-            .unwrap();
-        let ward = probe
-            .render(&gpu, ShadingModel::Ward, &m, &entry.scene, &entry.edges)
-            .unwrap();
+        let tab = render((&gpu, &mut probe), ShadingModel::Tabulated, &m, entry);
+        let ward = render((&gpu, &mut probe), ShadingModel::Ward, &m, entry);
         let (t, w) = (metric::score(&tab, entry), metric::score(&ward, entry));
         println!(
             "h = {h} mm: tabulated {:.3}, ward {:.3} (MC rel SE {:.3})",
@@ -217,15 +219,7 @@ fn preintegrated_follows_close_point_lights() {
             let entry = set
                 .entry(&Scene::PointLight { h_mm: h })
                 .expect("reference has the point light");
-            let pre = probe
-                .render(
-                    &gpu,
-                    ShadingModel::Preintegrated,
-                    &m,
-                    &entry.scene,
-                    &entry.edges,
-                )
-                .unwrap();
+            let pre = render((&gpu, &mut probe), ShadingModel::Preintegrated, &m, entry);
             let p = metric::score(&pre, entry);
             println!(
                 "{} h = {h} mm: preintegrated {:.3} {:?} (MC rel SE {:.3})",
