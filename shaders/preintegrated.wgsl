@@ -79,9 +79,13 @@ fn shade(s: Surface) -> vec3<f32> {
     // each channel reads the rows at its own lifted cosine μ_c = (h + s_c)/d_c: the entry
     // (Fresnel transmittance) and the oblique response the rows hold, at the incidence the
     // lifted light has for that channel.
+    // The lift fades with the distance r from the light's foot past LIFT_REACH lifts: far out
+    // the irradiance barely changes across the kernel, so it is the light's own, not the
+    // lifted light's (a Poisson kernel's tail, ∝ s/r³, would keep lighting it from the foot).
     let d = s.light_dist * MM_PER_M;
     let h = dot(s.n, s.l) * d;
-    let lift = model.lift;
+    let reach2 = model.lift * model.lift * (LIFT_REACH * LIFT_REACH);
+    let lift = model.lift * reach2 / (reach2 + max(d * d - h * h, 0.0));
     let d2 = max(lift * (2.0 * h + lift) + d * d, vec3<f32>(1e-12));
     let u = 0.5 * clamp((h + lift) * inverseSqrt(d2), vec3<f32>(-1.0), vec3<f32>(1.0)) + 0.5;
     // The light before its shadow test (s.light carries the hard test; with no map it is

@@ -227,9 +227,10 @@ fn preintegrated_follows_close_point_lights() {
             );
             // Below the spatial-transport acceptance bound (0.10 over the reference's noise):
             // the channels' shared lifted cosine broke it at 2 mm on skin1 (red far too dark),
-            // the median/√3 lift without the oblique shift scored 0.102 there.
+            // the median/√3 lift without the oblique shift or the fade scored 0.102 there
+            // (white coat 0.087: the Poisson tail far too bright far out).
             assert!(
-                p.mean_log_all <= tolerance(entry, 0.07),
+                p.mean_log_all <= tolerance(entry, 0.06),
                 "{} h {h}: {p:?}",
                 m.name
             );

@@ -19,7 +19,9 @@
 //! kernels compose by adding heights, and a point light at height h lights the plane with the
 //! Poisson kernel of height h, so the blurred irradiance is that of the light at h + s. Each
 //! channel reads the rows at its own lifted cosine (the entry Fresnel factor and the oblique
-//! response at the incidence its lifted light has).
+//! response at the incidence its lifted light has). The lift fades with the distance from the
+//! light's foot ([`LIFT_REACH`]): the material's kernel has no Poisson tail, and far out the
+//! irradiance is the light's own.
 
 use std::sync::{Arc, Mutex, OnceLock};
 
@@ -252,8 +254,18 @@ pub fn params_from(b: &Bake, m: &Material) -> Params {
     }
 }
 
+/// How far from a point light's foot, in lifts, the lift fades to half: s/(1 + (r/(k s))²)
+/// (beyond the kernel's reach the irradiance is the light's own; fitted with [`SHIFT_LIFT`]
+/// to the same profiles, the worst error flat within 0.01 for k = 30–60).
+pub const LIFT_REACH: f64 = 40.0;
+
 /// The LUT's layout as its shader reads it (`preintegrated.wgsl`, through `consts`).
 const SHADER_CONSTS: &[SharedConst] = &[
+    SharedConst {
+        name: "LIFT_REACH",
+        value: Const::F32(LIFT_REACH as f32),
+        doc: "lifts from a point light's foot at which its lift is halved (LIFT_REACH)",
+    },
     SharedConst {
         name: "LUT_U",
         value: Const::F32(LUT_U as f32),
