@@ -60,7 +60,6 @@ pub fn fill(primitives: &mut [Primitive]) {
     let t_min = (LOCAL_EDGES * edge).max(1e-4 * (hi - lo).length());
     let caster = Caster::new(tris, &outward);
     let disc = cosine_directions();
-    let t0 = std::time::Instant::now();
     for p in primitives.iter_mut() {
         for v in &mut p.vertices {
             let at = Vec3::from_array(v.position);
@@ -69,8 +68,6 @@ pub fn fill(primitives: &mut [Primitive]) {
                 .map_or([0.0; 4], |n| of_vertex(&caster, &disc, at, n, t_min));
         }
     }
-    let all: Vec<f32> = primitives.iter().flat_map(|p| p.vertices.iter().map(|v| v.bounce[3])).collect();
-    eprintln!("DEBUG bounce {} vertices mean F {} in {:?}", all.len(), all.iter().sum::<f32>() / all.len() as f32, t0.elapsed());
 }
 
 /// [`RAYS`] directions about +z, cosine-distributed.
