@@ -454,3 +454,4 @@ fn the_light_the_head_returns_to_itself_brings_its_shadows_toward_the_truth() {
         assert!(a < b, "{}: {a} with, {b} without", t.record.name);
     }
 }
+

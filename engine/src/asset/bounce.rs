@@ -6,20 +6,26 @@
 //! it as a dim fill (`returned_irradiance`, common.wgsl).
 //!
 //! A vertex sees, along a cosine-distributed ray, a point of the surface with normal n_h
-//! (faced toward the vertex). Under a distant light along l, that point leaves A·E·max(n_h·l, 0)
-//! (A the medium's diffuse reflectance, E the light's irradiance at normal incidence, its own
-//! shadow ignored), so the vertex receives A·E·g(l), g(l) = ⟨max(n_h·l, 0)⟩ over its rays (a
-//! ray that meets nothing gives 0). Stored per vertex as g's first two spherical-harmonic
-//! bands, exact for max(x, 0) in the mean over the sphere: g(l) ≈ max(¼·F + ½·s·l, 0) with
-//! F the fraction of rays that meet the model (its self view factor) and s the sum of the
-//! normals they meet over the ray count — [`Vertex::bounce`] = (s, F); s turns with the skin.
+//! (faced toward the vertex). Under a distant light along l of irradiance E, that point
+//! leaves about A·E·max(n_h·l, 0) (A the medium's diffuse reflectance), so the vertex receives
+//! A·E·g(l), g(l) = ⟨max(n_h·l, 0)⟩ over its rays (a ray that meets nothing gives 0). Stored
+//! per vertex as g's first two spherical-harmonic bands over l, exact for max(x, 0) in the
+//! mean over the sphere: g(l) ≈ max(¼·F + ½·s·l, 0), F the fraction of rays that meet the
+//! model (its self view factor) and s the sum of the normals they meet over the ray count —
+//! [`Vertex::bounce`] = (s, F); s turns with the skin.
 //!
-//! Cast at load through the thickness's BVH ([`Caster`]), over each mesh's primitives together,
-//! [`RAYS`] rays per vertex in the same directions about every vertex's normal
-//! (deterministic, and smooth across the mesh). Hits nearer than a few edge lengths are the
-//! surface's own facets, not another part of it (light exchanged that close is the
-//! diffusion's). A scan's normals may face inward where its winding does (a double-sided
-//! material shows it either way): a vertex's outward side is the one a ray leaves by.
+//! The seen point is taken as lit wherever it faces the light: its own shadow is not tested.
+//! Tested (each seen point's sky cast again, its open fraction and mean open direction taken
+//! into the bands) the face scored worse under every light of the sweep (the named back
+//! light 0.138 against 0.129 on the strict bar, 0.257 against 0.225 on the wide; a second
+//! bounce added to that changed 0.002): skin in its own shadow still glows — light diffuses
+//! into the shadow and round the terminator — so the geometric shadow is too hard a cut.
+//!
+//! Cast at load through the thickness's BVH ([`Caster`]), over each mesh's primitives
+//! together, on every core: [`RAYS`] rays per vertex in the same directions about every
+//! vertex's normal (deterministic, and smooth across the mesh). Hits nearer than a few edge
+//! lengths are the surface's own facets, not another part of it (light exchanged that close
+//! is the diffusion's).
 
 use glam::Vec3;
 
@@ -37,7 +43,7 @@ const LOCAL_EDGES: f32 = 4.0;
 ///
 /// [`Vertex::bounce`]: super::Vertex::bounce
 pub fn fill(primitives: &mut [Primitive]) {
-    let (mut tris, mut outward) = (Vec::new(), Vec::new());
+    let (mut tris, mut outward, mut points) = (Vec::new(), Vec::new(), Vec::new());
     let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
     for p in primitives.iter() {
         let at = |i: u32| Vec3::from_array(p.vertices[i as usize].position);
@@ -46,6 +52,11 @@ pub fn fill(primitives: &mut [Primitive]) {
             tris.push([at(t[0]), at(t[1]), at(t[2])]);
             outward.push(nrm(t[0]) + nrm(t[1]) + nrm(t[2]));
         }
+        points.extend(
+            p.vertices
+                .iter()
+                .map(|v| (Vec3::from_array(v.position), Vec3::from_array(v.normal))),
+        );
         lo = lo.min(p.bounds.min);
         hi = hi.max(p.bounds.max);
     }
@@ -60,14 +71,32 @@ pub fn fill(primitives: &mut [Primitive]) {
     let t_min = (LOCAL_EDGES * edge).max(1e-4 * (hi - lo).length());
     let caster = Caster::new(tris, &outward);
     let disc = cosine_directions();
+    let bounces = in_parallel(&points, |&(at, n)| {
+        n.try_normalize()
+            .map_or([0.0; 4], |n| of_vertex(&caster, &disc, at, n, t_min))
+    });
+    let mut bounces = bounces.into_iter();
     for p in primitives.iter_mut() {
         for v in &mut p.vertices {
-            let at = Vec3::from_array(v.position);
-            v.bounce = Vec3::from_array(v.normal)
-                .try_normalize()
-                .map_or([0.0; 4], |n| of_vertex(&caster, &disc, at, n, t_min));
+            v.bounce = bounces.next().unwrap_or_default();
         }
     }
+}
+
+/// `f` over `items` on the machine's cores, in order.
+fn in_parallel<T: Sync, R: Send>(items: &[T], f: impl Fn(&T) -> R + Sync) -> Vec<R> {
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let chunk = items.len().div_ceil(threads).max(1);
+    std::thread::scope(|scope| {
+        let parts: Vec<_> = items
+            .chunks(chunk)
+            .map(|part| scope.spawn(|| part.iter().map(&f).collect::<Vec<R>>()))
+            .collect();
+        parts
+            .into_iter()
+            .flat_map(|h| h.join().unwrap_or_default())
+            .collect()
+    })
 }
 
 /// [`RAYS`] directions about +z, cosine-distributed.
@@ -84,39 +113,19 @@ fn cosine_directions() -> Vec<Vec3> {
 
 /// (s, F) at the point `at` with unit normal `n` (module docs).
 fn of_vertex(caster: &Caster, disc: &[Vec3], at: Vec3, n: Vec3, t_min: f32) -> [f32; 4] {
-    let n = outward(caster, disc, at, n, t_min);
     let (u, w) = n.any_orthonormal_pair();
     let (mut sum, mut met) = (Vec3::ZERO, 0usize);
     for d in disc {
         let dir = (u * d.x + w * d.y + n * d.z).normalize();
-        if let Some((_, seen)) = caster.first(at, dir, t_min) {
+        if let Some((_, t)) = caster.first(at, dir, t_min) {
             // The side of the surface the vertex sees faces it.
+            let seen = caster.normal(t);
             sum += if seen.dot(dir) > 0.0 { -seen } else { seen };
             met += 1;
         }
     }
     let s = sum / RAYS as f32;
     [s.x, s.y, s.z, met as f32 / RAYS as f32]
-}
-
-/// `n` or −n, whichever leaves the model: a ray that leaves a closed surface crosses it an
-/// even number of times, one that goes in an odd number; a ray that meets nothing left it.
-/// (The rays lean 7° off the normal, as the first of `disc`: along a symmetric mesh's
-/// normal a ray may leave through a vertex exactly, between its triangles.)
-fn outward(caster: &Caster, disc: &[Vec3], at: Vec3, n: Vec3, t_min: f32) -> Vec3 {
-    let (u, w) = n.any_orthonormal_pair();
-    let d = disc[0];
-    let up = (u * d.x + w * d.y + n * d.z).normalize();
-    let down = (u * d.x + w * d.y - n * d.z).normalize();
-    match (
-        caster.first(at, up, t_min).is_some(),
-        caster.first(at, down, t_min).is_some(),
-    ) {
-        (true, false) => -n,
-        (false, _) => n,
-        (true, true) if caster.crossings(at, up, t_min) % 2 == 0 => n,
-        (true, true) => -n,
-    }
 }
 
 #[cfg(test)]
@@ -136,20 +145,6 @@ mod tests {
             for b in bounces(&mut m) {
                 assert!(b.iter().all(|c| c.abs() < 1e-6), "{b:?}");
             }
-        }
-    }
-
-    #[test]
-    fn a_sphere_with_its_normals_turned_in_still_returns_nothing() {
-        // Normals turned inward, as a scan's may be: outward is still out, so nothing is met.
-        let mut m = sphere_model(0.05, 0.1);
-        for p in &mut m.meshes[0].primitives {
-            for v in &mut p.vertices {
-                v.normal = v.normal.map(|c| -c);
-            }
-        }
-        for b in bounces(&mut m) {
-            assert!(b[3] < 1e-6, "{b:?}");
         }
     }
 
@@ -206,10 +201,10 @@ mod tests {
             .find(|v| (v.position[0] - 0.5 * a).abs() < 1e-6 && v.position[2].abs() < 1e-6)
             .unwrap();
         let [sx, sy, sz, f] = mid.bounce;
-        assert!(f > 0.1 && f < 0.6, "{f}");
-        // What it sees faces +x: lit by a light along +x, not by one along −x.
+        assert!(f > 0.1 && f < 0.6, "{:?}", mid.bounce);
+        // What it sees faces +x: lit along +x, page 2 glows toward it; along −x, it is dark.
         assert!(sx > 0.9 * f && sy.abs() < 0.2 * f && sz.abs() < 0.2 * f, "{:?}", mid.bounce);
         let g = |l: Vec3| (0.25 * f + 0.5 * Vec3::new(sx, sy, sz).dot(l)).max(0.0);
-        assert!(g(Vec3::X) > 0.5 * f && g(-Vec3::X) < 0.05 * f);
+        assert!(g(Vec3::X) > 0.5 * f && g(-Vec3::X) < 0.05 * f, "{:?}", mid.bounce);
     }
 }

@@ -109,8 +109,8 @@ impl Caster {
 
 impl Caster {
     /// The first triangle the ray `origin + t·dir` (unit `dir`) meets at t > `t_min`: its
-    /// distance and its outward normal (unit).
-    pub fn first(&self, origin: Vec3, dir: Vec3, t_min: f32) -> Option<(f32, Vec3)> {
+    /// distance and its index (in the order given to [`Caster::new`]).
+    pub fn first(&self, origin: Vec3, dir: Vec3, t_min: f32) -> Option<(f32, usize)> {
         let bvh = self.bvh.as_ref()?;
         let ray = Ray::new(
             Vec3A::from(origin),
@@ -125,36 +125,12 @@ impl Caster {
                 .filter(|d| *d > t_min)
                 .unwrap_or(f32::INFINITY)
         });
-        met.then(|| {
-            let i = bvh.primitive_indices[rh.primitive_id as usize] as usize;
-            (rh.t, self.outward[i].normalize_or_zero())
-        })
+        met.then(|| (rh.t, bvh.primitive_indices[rh.primitive_id as usize] as usize))
     }
 
-    /// How many times the ray `origin + t·dir` (unit `dir`) crosses the surface at t > `t_min`
-    /// (a ray through an edge or a vertex crosses once).
-    pub fn crossings(&self, origin: Vec3, dir: Vec3, t_min: f32) -> usize {
-        let Some(bvh) = self.bvh.as_ref() else {
-            return 0;
-        };
-        let ray = Ray::new(
-            Vec3A::from(origin),
-            Vec3A::from(dir + Vec3::ZERO),
-            t_min,
-            f32::INFINITY,
-        );
-        let mut hits = Vec::new();
-        let mut rh = RayHit::none();
-        bvh.ray_traverse(ray, &mut rh, |_, id| {
-            let i = bvh.primitive_indices[id] as usize;
-            if let Some(d) = hit(&self.tris[i], origin, dir).filter(|d| *d > t_min) {
-                hits.push(d);
-            }
-            f32::INFINITY
-        });
-        hits.sort_by(f32::total_cmp);
-        hits.dedup_by(|b, a| *b - *a <= t_min);
-        hits.len()
+    /// Triangle `i`'s unit normal on its outward side.
+    pub fn normal(&self, i: usize) -> Vec3 {
+        self.outward[i].normalize_or_zero()
     }
 }
 
