@@ -80,7 +80,8 @@ fn surface_at(in: VertexOut, albedo: vec3<f32>, front: bool) -> Surface {
     // concave part's lit side taken as a ball of its radius scored 0.001 better on the face
     // bench for 0.09 G52 cycles: the affordable tier's price could not take it.)
     s.curvature_radius = 1.0 / max(in.shape.x, 1.0 / FLAT_RADIUS_M);
-    s.bounce = in.shape.y;
+    // (Interpolated at a sample past the triangle's edge it can dip below 0.)
+    s.bounce = max(in.shape.y, 0.0);
     return s;
 }
 
