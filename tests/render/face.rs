@@ -440,7 +440,7 @@ fn the_light_the_head_returns_to_itself_brings_its_shadows_toward_the_truth() {
     for (light, t) in truth_cache::load_named(&cache_dir(), &scene).unwrap() {
         let position = light.position();
         let wide = t.reference.clone().with_max_rel_se(WIDE_REL_SE);
-        let mut score = |r: &mut HeadRenderer| {
+        let score = |r: &mut HeadRenderer| {
             let shading = ShadingModel::Preintegrated;
             let px = r
                 .radiance(&gpu, shading, &cam, position, t.record.intensity)
@@ -450,8 +450,10 @@ fn the_light_the_head_returns_to_itself_brings_its_shadows_toward_the_truth() {
                 .mean_abs_ln
         };
         let (a, b) = (score(&mut rw), score(&mut ro));
-        println!("{}: wide {a:.3} with the returned light, {b:.3} without", t.record.name);
+        println!(
+            "{}: wide {a:.3} with the returned light, {b:.3} without",
+            t.record.name
+        );
         assert!(a < b, "{}: {a} with, {b} without", t.record.name);
     }
 }
-

@@ -203,8 +203,16 @@ mod tests {
         let [sx, sy, sz, f] = mid.bounce;
         assert!(f > 0.1 && f < 0.6, "{:?}", mid.bounce);
         // What it sees faces +x: lit along +x, page 2 glows toward it; along −x, it is dark.
-        assert!(sx > 0.9 * f && sy.abs() < 0.2 * f && sz.abs() < 0.2 * f, "{:?}", mid.bounce);
+        assert!(
+            sx > 0.9 * f && sy.abs() < 0.2 * f && sz.abs() < 0.2 * f,
+            "{:?}",
+            mid.bounce
+        );
         let g = |l: Vec3| (0.25 * f + 0.5 * Vec3::new(sx, sy, sz).dot(l)).max(0.0);
-        assert!(g(Vec3::X) > 0.5 * f && g(-Vec3::X) < 0.05 * f, "{:?}", mid.bounce);
+        assert!(
+            g(Vec3::X) > 0.5 * f && g(-Vec3::X) < 0.05 * f,
+            "{:?}",
+            mid.bounce
+        );
     }
 }

@@ -125,7 +125,12 @@ impl Caster {
                 .filter(|d| *d > t_min)
                 .unwrap_or(f32::INFINITY)
         });
-        met.then(|| (rh.t, bvh.primitive_indices[rh.primitive_id as usize] as usize))
+        met.then(|| {
+            (
+                rh.t,
+                bvh.primitive_indices[rh.primitive_id as usize] as usize,
+            )
+        })
     }
 
     /// Triangle `i`'s unit normal on its outward side.
