@@ -20,6 +20,7 @@ struct VertexIn {
     @location(5) weights: vec4<f32>,
     @location(6) thickness: f32,
     @location(7) curvature: vec4<f32>,
+    @location(12) bounce: vec4<f32>,
 };
 
 struct VertexOut {
@@ -29,7 +30,8 @@ struct VertexOut {
     @location(2) tangent: vec4<f32>,
     @location(3) uv: vec2<f32>,
     @location(4) thickness: f32,
-    @location(5) curvature: f32,
+    // The curvature along the light (1/m) and the light the subject returns here (`bounce`).
+    @location(5) shape: vec2<f32>,
 };
 
 @vertex
@@ -56,7 +58,13 @@ fn vs_main(v: VertexIn) -> VertexOut {
     let a = (skin * vec4<f32>(v.curvature.xyz, 0.0)).xyz / (scale * sqrt(scale));
     let a2 = select(0.5 * dot(a, a), pow(dot(a, along), 2.0) / dot(along, along),
                     dot(along, along) > 1e-6 * dot(to_light, to_light));
-    out.curvature = v.curvature.w / scale + a2;
+    // The light the subject returns to this point from its own lit surface (asset::bounce:
+    // its first two spherical-harmonic bands in the light's direction; s turns with the
+    // skin), per unit of the light's intensity and of the skin's diffuse reflectance squared.
+    let s = (skin * vec4<f32>(v.bounce.xyz, 0.0)).xyz / scale;
+    let d2 = max(dot(to_light, to_light), LIGHT_D_MIN_M * LIGHT_D_MIN_M);
+    let bounce = max(0.25 * v.bounce.w + 0.5 * dot(s, to_light) * inverseSqrt(d2), 0.0) / d2;
+    out.shape = vec2<f32>(v.curvature.w / scale + a2, bounce);
     return out;
 }
 
@@ -71,7 +79,9 @@ fn surface_at(in: VertexOut, albedo: vec3<f32>, front: bool) -> Surface {
     // The mesh's curvature along the light (vs_main); a concave or flat part is flat. (A
     // concave part's lit side taken as a ball of its radius scored 0.001 better on the face
     // bench for 0.09 G52 cycles: the affordable tier's price could not take it.)
-    s.curvature_radius = 1.0 / max(in.curvature, 1.0 / FLAT_RADIUS_M);
+    s.curvature_radius = 1.0 / max(in.shape.x, 1.0 / FLAT_RADIUS_M);
+    // (Interpolated at a sample past the triangle's edge it can dip below 0.)
+    s.bounce = max(in.shape.y, 0.0);
     return s;
 }
 

@@ -37,6 +37,10 @@ struct Surface {
     // Radius of curvature of the surface here (m: the mesh's curvature along the light);
     // FLAT_RADIUS_M where unknown, flat or concave.
     curvature_radius: f32,
+    // The light the subject returns here from its own lit surface (interreflection): its
+    // irradiance per unit of the key light's intensity × colour and of the skin's diffuse
+    // reflectance squared (1/m²; asset::bounce); 0 where unknown.
+    bounce: f32,
 };
 
 fn safe_normalize(v: vec3<f32>, fallback: vec3<f32>) -> vec3<f32> {
@@ -132,6 +136,7 @@ fn make_surface(pos: vec3<f32>, normal: vec3<f32>, tangent: vec4<f32>, albedo: v
     s.visibility = light_visible_coord(s.shadow_coord);
     s.light = frame.light_intensity * frame.light_color * s.visibility;
     s.curvature_radius = FLAT_RADIUS_M;
+    s.bounce = 0.0;
     return s;
 }
 
@@ -143,6 +148,12 @@ fn irradiance(s: Surface) -> vec3<f32> {
 // The same before the shadow test.
 fn unshadowed_irradiance(s: Surface) -> vec3<f32> {
     return frame.light_intensity * frame.light_color / (s.light_dist * s.light_dist);
+}
+
+// The irradiance the subject returns to this point from its own lit surface (`bounce`), a
+// skin of diffuse reflectance `a` throughout (its shadows on itself not counted).
+fn returned_irradiance(s: Surface, a: vec3<f32>) -> vec3<f32> {
+    return (a * s.bounce) * (frame.light_intensity * frame.light_color);
 }
 
 // Narkowicz's fit of the ACES filmic curve.

@@ -35,6 +35,8 @@ fn conformance_shade(@builtin(global_invocation_id) id: vec3<u32>) {
     s.pigmented = false;
     s.thickness = max(x.albedo.w, 0.0);
     s.curvature_radius = FLAT_RADIUS_M;
+    // No light returned by a subject (the f64 twins model one point).
+    s.bounce = 0.0;
     conformance_out[2u * i] = vec4<f32>(shade(s), 0.0);
     conformance_out[2u * i + 1u] = vec4<f32>(conformance_probe(s, x.probe.x), 0.0);
 }

@@ -114,7 +114,9 @@ fn shade(s: Surface) -> vec3<f32> {
     let slab = lut_row(slab_u(path), LUT_CURVATURE_ROWS + 1.0).rgb;
     let ball = lut_row(slab_u(sss_chord_mm(s, back)), LUT_CURVATURE_ROWS + 1.0).rgb;
     let through = (back * entry / (d * d)) * max(slab - ball, vec3<f32>(0.0));
-    let ambient = PI * frame.ambient * model.uniform_albedo;
+    // The ambient light and the light the subject returns here from its own lit surface
+    // (interreflection: the glow in a cast shadow), both reflected diffusely.
+    let ambient = model.uniform_albedo * (PI * frame.ambient + returned_irradiance(s, model.uniform_albedo));
     // A pigmented texel: its factor in and out (one pass sees only this texel), t² =
     // albedo / the medium's (`sss_pigment`'s square, without its root).
     let t2 = select(vec3<f32>(1.0), max(s.albedo, vec3<f32>(0.0)) / max(model.uniform_albedo, vec3<f32>(1e-6)), s.pigmented);

@@ -163,8 +163,10 @@ fn sss_split(s: Surface) -> Split {
     out.exit = exit * t;
     out.spread = sss_spread(s) * t;
     // Ambient: uniform radiance L_a gives irradiance π L_a, reflected with the medium's
-    // reflectance under uniform light.
-    out.local = exit * t * t * (PI * frame.ambient * model.uniform_albedo + sss_translucency(s));
+    // reflectance under uniform light; so is the light the subject returns here from its own
+    // lit surface (smooth over the kernel's reach).
+    let diffuse = PI * frame.ambient + returned_irradiance(s, model.uniform_albedo);
+    out.local = exit * t * t * (model.uniform_albedo * diffuse + sss_translucency(s));
     return out;
 }
 

@@ -15,7 +15,7 @@ use dermis_engine::scene::face::{self, FaceLight};
 use dermis_engine::shading::{material::SKIN1, ShadingModel};
 use dermis_measure::face::export::{SceneJson, WeldedMesh};
 use dermis_measure::face::render::HeadRenderer;
-use dermis_measure::face::score::{CAP, MAX_REL_SE};
+use dermis_measure::face::score::{CAP, MAX_REL_SE, WIDE_REL_SE};
 use dermis_measure::face::truth::{self, FaceScene, TruthRun};
 use dermis_measure::face::truth_cache;
 
@@ -413,4 +413,47 @@ fn render_head_writes_hdr_and_png() {
         .unwrap();
     assert!(!bad.status.success());
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn the_light_the_head_returns_to_itself_brings_its_shadows_toward_the_truth() {
+    // Every local model leaves a cast shadow black where the truth holds light that left the
+    // skin and came back to it (asset::bounce): with the head's own returned light,
+    // `preintegrated` is nearer the truth on the wide bar (the shadows, the sockets, the
+    // terminator) under every named light than with it zeroed.
+    let gpu = Gpu::headless().unwrap_or_else(|e| panic!("{e}"));
+    let with = head::load(&assets(), false).unwrap();
+    let vs = &with.meshes[0].primitives[0].vertices;
+    let seen = vs.iter().map(|v| v.bounce[3] as f64).sum::<f64>() / vs.len() as f64;
+    assert!((0.05..0.5).contains(&seen), "mean self view factor {seen}");
+    let mut without = with.clone();
+    for p in &mut without.meshes[0].primitives {
+        for v in &mut p.vertices {
+            v.bounce = [0.0; 4];
+        }
+    }
+    let scene = FaceScene::head(&assets()).unwrap();
+    let (w, h) = (scene.width, scene.height);
+    let mut rw = HeadRenderer::new(&gpu, &with, &SKIN1, w, h, true).unwrap();
+    let mut ro = HeadRenderer::new(&gpu, &without, &SKIN1, w, h, true).unwrap();
+    let cam = face::camera();
+    for (light, t) in truth_cache::load_named(&cache_dir(), &scene).unwrap() {
+        let position = light.position();
+        let wide = t.reference.clone().with_max_rel_se(WIDE_REL_SE);
+        let score = |r: &mut HeadRenderer| {
+            let shading = ShadingModel::Preintegrated;
+            let px = r
+                .radiance(&gpu, shading, &cam, position, t.record.intensity)
+                .unwrap();
+            wide.score(&FloatImage::new(w, h, px).unwrap())
+                .unwrap()
+                .mean_abs_ln
+        };
+        let (a, b) = (score(&mut rw), score(&mut ro));
+        println!(
+            "{}: wide {a:.3} with the returned light, {b:.3} without",
+            t.record.name
+        );
+        assert!(a < b, "{}: {a} with, {b} without", t.record.name);
+    }
 }

@@ -26,6 +26,7 @@
 
 mod accessor;
 mod animation;
+pub mod bounce;
 pub mod compressed;
 pub mod curvature;
 mod error;

@@ -5,7 +5,7 @@ use glam::{Mat4, Quat, Vec3};
 
 use super::Material;
 
-/// One vertex as uploaded to the GPU (92 bytes, `#[repr(C)]`).
+/// One vertex as uploaded to the GPU (108 bytes, `#[repr(C)]`).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct Vertex {
@@ -25,6 +25,10 @@ pub struct Vertex {
     /// curvature along a unit tangent t is κ₂ + (a·t)²; computed at load from the mesh
     /// ([`super::curvature`]).
     pub curvature: [f32; 4],
+    /// The light the model returns to this vertex from its own surface, as (s, F): under a
+    /// distant light along l of irradiance E, A·E·max(F/4 + s·l/2, 0) arrives here from the
+    /// rest of a model of diffuse reflectance A ([`super::bounce`]; computed at load).
+    pub bounce: [f32; 4],
 }
 
 /// Thickness where a mesh neither gives one nor has another side to cast to (metres).

@@ -24,6 +24,7 @@ fn vertex(position: Vec3, normal: Vec3, thickness_m: f32, curvature: f32) -> Ver
         weights: [1.0, 0.0, 0.0, 0.0],
         thickness: thickness_m,
         curvature: [0.0, 0.0, 0.0, curvature],
+        bounce: [0.0; 4],
     }
 }
 

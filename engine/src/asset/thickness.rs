@@ -107,6 +107,38 @@ impl Caster {
     }
 }
 
+impl Caster {
+    /// The first triangle the ray `origin + t·dir` (unit `dir`) meets at t > `t_min`: its
+    /// distance and its index (in the order given to [`Caster::new`]).
+    pub fn first(&self, origin: Vec3, dir: Vec3, t_min: f32) -> Option<(f32, usize)> {
+        let bvh = self.bvh.as_ref()?;
+        let ray = Ray::new(
+            Vec3A::from(origin),
+            Vec3A::from(dir + Vec3::ZERO),
+            t_min,
+            f32::INFINITY,
+        );
+        let mut rh = RayHit::none();
+        let met = bvh.ray_traverse(ray, &mut rh, |_, id| {
+            let i = bvh.primitive_indices[id] as usize;
+            hit(&self.tris[i], origin, dir)
+                .filter(|d| *d > t_min)
+                .unwrap_or(f32::INFINITY)
+        });
+        met.then(|| {
+            (
+                rh.t,
+                bvh.primitive_indices[rh.primitive_id as usize] as usize,
+            )
+        })
+    }
+
+    /// Triangle `i`'s unit normal on its outward side.
+    pub fn normal(&self, i: usize) -> Vec3 {
+        self.outward[i].normalize_or_zero()
+    }
+}
+
 /// Möller–Trumbore, both faces: the distance along `dir` to the triangle, if the line meets it.
 fn hit(t: &[Vec3; 3], origin: Vec3, dir: Vec3) -> Option<f32> {
     let e1 = t[1] - t[0];

@@ -57,9 +57,11 @@ pub(crate) fn load_mesh(
         primitives.push(p);
         given.push(prim.get(&Semantic::Extras("THICKNESS".into())).is_some());
     }
-    // Where the file gives no thickness, the mesh's own (ray cast at load); its curvature.
+    // Where the file gives no thickness, the mesh's own (ray cast at load); its curvature; the
+    // light it returns to itself.
     super::thickness::fill(&mut primitives, &given);
     super::curvature::fill(&mut primitives);
+    super::bounce::fill(&mut primitives);
     Ok((
         Mesh {
             name: mesh.name().map(str::to_owned),
@@ -269,6 +271,7 @@ fn load_primitive(
             weights: weights[i],
             thickness: thickness[i],
             curvature: [0.0; 4],
+            bounce: [0.0; 4],
         });
     }
     if n == 0 {

@@ -29,8 +29,9 @@ impl GpuMesh {
     }
 }
 
-/// The vertex layout of [`Vertex`] (shader locations 0–7).
-pub const VERTEX_ATTRIBUTES: [wgpu::VertexAttribute; 8] = wgpu::vertex_attr_array![
+/// The vertex layout of [`Vertex`] (shader locations 0–7 and 12: props take 8–11 per
+/// instance).
+pub const VERTEX_ATTRIBUTES: [wgpu::VertexAttribute; 9] = wgpu::vertex_attr_array![
     0 => Float32x3,
     1 => Float32x3,
     2 => Float32x4,
@@ -39,6 +40,7 @@ pub const VERTEX_ATTRIBUTES: [wgpu::VertexAttribute; 8] = wgpu::vertex_attr_arra
     5 => Float32x4,
     6 => Float32,
     7 => Float32x4,
+    12 => Float32x4,
 ];
 
 pub fn vertex_layout() -> wgpu::VertexBufferLayout<'static> {
