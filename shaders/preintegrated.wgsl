@@ -34,7 +34,11 @@ fn slab_u(t_mm: f32) -> f32 {
 // thinner than its ball — an ear; `entry_visibility`).
 // (`back` = max(−n·l, 0), `path_mm` that path: the caller's.)
 fn wrap_visibility(s: Surface, v: f32, back: f32, path_mm: f32) -> f32 {
-    return select(v, entry_visibility(s, path_mm * (1.0 / MM_PER_M), v), back > 0.0);
+    // At least as far as the material's reach (`entry_reach_mm`) where the slab allows: a
+    // rim the ball makes thinner than it is (an ear's) is otherwise tested inside itself.
+    let slab = s.thickness * model.mm_per_m / max(back, 1e-3);
+    let test_mm = max(path_mm, min(slab, model.entry_reach_mm));
+    return select(v, entry_visibility(s, test_mm * (1.0 / MM_PER_M), v), back > 0.0);
 }
 
 // The key light's visibility per channel, as log2 per channel (.rgb) and a factor (.a), so the

@@ -83,6 +83,7 @@ pub fn params(m: &Material) -> Params {
         shift: [[0.0; 3]; OBLIQUE_NODES],
         slab: None,
         lift: [0.0; 3],
+        entry_reach_mm: 0.0,
     }
 }
 

@@ -238,6 +238,14 @@ pub fn mean_shift(b: &Bake, c: usize) -> f64 {
         / N as f64
 }
 
+/// How far (mm) toward the light past the terminator the shadow test looks for where light
+/// entered, at least (`wrap_visibility`): twice the kernel's longest median radius, where
+/// most of the light that reaches a point entered. (A rim the ball of its curvature makes
+/// thinner than it is — an ear's — tested inside itself, at its own far face.)
+pub fn entry_reach_mm(b: &Bake) -> f64 {
+    2.0 * (0..3).map(|c| b.median_radius(c)).fold(0.0, f64::max)
+}
+
 pub fn params(m: &Material) -> Params {
     params_from(&bake::for_material(m), m)
 }
@@ -251,6 +259,7 @@ pub fn params_from(b: &Bake, m: &Material) -> Params {
         shift: [[0.0; 3]; super::bake::OBLIQUE_NODES],
         slab: Some(b.slab),
         lift: lift(b),
+        entry_reach_mm: entry_reach_mm(b),
     }
 }
 

@@ -163,7 +163,9 @@ model_uniform! {
         /// (diffuse) light on a flat surface, ∫ R(μ) 2μ dμ ([`uniform_albedo`]): what ambient
         /// light reflects with, and what a pigment's albedo is relative to.
         pub uniform_albedo: [f32; 3],
-        pub _pad0: f32,
+        /// How far (mm) past the terminator the shadow test looks toward the light, at least
+        /// (models that sample a LUT; [`Params::entry_reach_mm`]).
+        pub entry_reach_mm: f32,
         /// q(μ_k) = R(μ_k)/R(1), μ_k = (k/6)² (rgb).
         pub oblique: [[f32; 4]; OBLIQUE_NODES],
         /// ln of the diffuse transmittance of a slab SLAB_FIRST_MM · 2^k thick (rgb).
@@ -187,6 +189,9 @@ pub struct Params {
     pub slab: Option<[[f64; 3]; SLAB_NODES]>,
     /// Height (mm) the light is lifted by (models that sample a LUT), per channel.
     pub lift: [f64; 3],
+    /// How far (mm) past the terminator the shadow test looks toward the light, at least
+    /// (models that sample a LUT; `preintegrated::entry_reach_mm`).
+    pub entry_reach_mm: f64,
 }
 
 impl Params {
@@ -203,7 +208,7 @@ impl Params {
             lift: f32x3(self.lift),
             translucent: f32::from(u8::from(self.slab.is_some())),
             uniform_albedo: [0.0; 3],
-            _pad0: 0.0,
+            entry_reach_mm: self.entry_reach_mm as f32,
             oblique: self.oblique.map(row),
             slab: slab.map(|t| row(t.map(|v| v.max(SLAB_FLOOR).ln()))),
             shift: self.shift.map(row),

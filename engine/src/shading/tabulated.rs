@@ -25,6 +25,7 @@ pub fn params_from(b: &Bake, m: &Material) -> Params {
         shift: b.shift,
         slab: Some(b.slab),
         lift: [0.0; 3],
+        entry_reach_mm: 0.0,
     }
 }
 
