@@ -79,14 +79,19 @@ fn shade(s: Surface) -> vec3<f32> {
     let v = model.lut_r0_mm / (model.lut_r0_mm + rho_mm);
     let v_tex = min(v * (LUT_CURVATURE_ROWS / LUT_TEXTURE_ROWS), (LUT_CURVATURE_ROWS - 0.5) / LUT_TEXTURE_ROWS);
     // The light lifted by each channel's Poisson height s_c: its distance² over the tangent
-    // plane, d² + 2 h s_c + s_c² (h its height, mm), scales each channel's irradiance; one
-    // fetch at the cosine of the light lifted by the channels' mean height serves all three.
+    // plane, d² + 2 h s_c + s_c² (h its height, mm), scales each channel's irradiance, and
+    // each channel reads the rows at its own lifted cosine μ_c = (h + s_c)/d_c: the entry
+    // (Fresnel transmittance) and the oblique response the rows hold, at the incidence the
+    // lifted light has for that channel.
+    // The lift fades with the distance r from the light's foot past LIFT_REACH lifts: far out
+    // the irradiance barely changes across the kernel, so it is the light's own, not the
+    // lifted light's (a Poisson kernel's tail, ∝ s/r³, would keep lighting it from the foot).
     let d = s.light_dist * MM_PER_M;
     let h = dot(s.n, s.l) * d;
-    let lift = model.lift;
+    let reach2 = model.lift * model.lift * (LIFT_REACH * LIFT_REACH);
+    let lift = model.lift * reach2 / (reach2 + max(d * d - h * h, 0.0));
     let d2 = max(lift * (2.0 * h + lift) + d * d, vec3<f32>(1e-12));
-    let mean = dot(lift, vec3<f32>(1.0 / 3.0));
-    let mu = clamp((h + mean) * inverseSqrt(max(mean * (2.0 * h + mean) + d * d, 1e-12)), -1.0, 1.0);
+    let u = 0.5 * clamp((h + lift) * inverseSqrt(d2), vec3<f32>(-1.0), vec3<f32>(1.0)) + 0.5;
     // The light before its shadow test (s.light carries the hard test; with no map it is
     // 1), so the response can take the penumbra's per-channel visibility instead;
     // translucency keeps the hard test, made where it enters on the far side.
@@ -96,14 +101,13 @@ fn shade(s: Surface) -> vec3<f32> {
     // The sphere response M/E_beam: u = (n·l + 1)/2, times the visibility and the irradiance
     // at normal incidence E = I/d² (mm: its d² cancels the lift's).
     // The rows hold log2 M (an exponential fall-off past the terminator interpolates exactly).
-    let log_m = textureSampleLevel(lut, lut_sampler, vec2<f32>(0.5 * (mu + 1.0), v_tex), 0.0).rgb;
+    let log_m = vec3<f32>(
+        textureSampleLevel(lut, lut_sampler, vec2<f32>(u.r, v_tex), 0.0).r,
+        textureSampleLevel(lut, lut_sampler, vec2<f32>(u.g, v_tex), 0.0).g,
+        textureSampleLevel(lut, lut_sampler, vec2<f32>(u.b, v_tex), 0.0).b,
+    );
     let light = frame.light_intensity * frame.light_color * (lit.a * MM_PER_M * MM_PER_M);
-    // On a flat lit side the response is ∝ the cosine, so each channel takes its own lifted
-    // cosine μ_c over the fetch's μ (red's lift is the longest: its shared cosine was too
-    // small off-axis); near the terminator (μ ≤ 0.1), where the sphere rows are not ∝ μ, not.
-    let mu_c = (h + lift) * inverseSqrt(d2);
-    let own = select(vec3<f32>(1.0), mu_c / mu, mu > 0.1);
-    let response = exp2(log_m + lit.rgb) * own / d2;
+    let response = exp2(log_m + lit.rgb) / d2;
     // Translucency (subsurface.wgsl's, with its Fresnel and slab tables read from the LUT)
     // beyond what the sphere rows already carry: they hold the light that crosses a ball of
     // radius ρ, whose chord along the light here is 2ρ·back, so only a part thinner than its

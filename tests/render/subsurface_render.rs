@@ -225,10 +225,12 @@ fn preintegrated_follows_close_point_lights() {
                 "{} h = {h} mm: preintegrated {:.3} {:?} (MC rel SE {:.3})",
                 m.name, p.mean_log_all, p.mean_log, p.ref_rel_se_all
             );
-            // The spatial-transport acceptance bound (0.10 over the reference's noise): the
-            // channels' shared lifted cosine broke it at 2 mm on skin1 (red far too dark).
+            // Below the spatial-transport acceptance bound (0.10 over the reference's noise):
+            // the channels' shared lifted cosine broke it at 2 mm on skin1 (red far too dark),
+            // the median/√3 lift without the oblique shift or the fade scored 0.102 there
+            // (white coat 0.087: the Poisson tail far too bright far out).
             assert!(
-                p.mean_log_all <= tolerance(entry, 0.10),
+                p.mean_log_all <= tolerance(entry, 0.06),
                 "{} h {h}: {p:?}",
                 m.name
             );
