@@ -120,17 +120,21 @@ impl ShadowView {
             return self;
         };
         // Where the box's corners' shadows fall on the floor (an upward ray: no floor).
-        let mut reach = corners.to_vec();
+        // (A fixed array: the frame allocates nothing.)
+        let mut reach = [Vec3::ZERO; 16];
+        reach[..8].copy_from_slice(&corners);
+        let mut n = 8;
         for c in corners {
             let down = light.y - c.y;
             if c.y > lo.y && down <= 1e-4 {
                 return self;
             }
             if c.y > lo.y {
-                reach.push(light + (c - light) * ((light.y - lo.y) / down));
+                reach[n] = light + (c - light) * ((light.y - lo.y) / down);
+                n += 1;
             }
         }
-        let Some(slab) = seen_part(camera, &reach) else {
+        let Some(slab) = seen_part(camera, &reach[..n]) else {
             return self;
         };
         let Some((seen_lo, seen_hi)) = self.image_of(&slab) else {
