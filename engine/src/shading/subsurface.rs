@@ -190,7 +190,7 @@ pub struct Params {
     /// Height (mm) the light is lifted by (models that sample a LUT), per channel.
     pub lift: [f64; 3],
     /// How far (mm) past the terminator the shadow test looks toward the light, at least
-    /// (models that sample a LUT; `preintegrated::entry_reach_mm`).
+    /// (models that sample a LUT: twice the kernel's longest median radius; 0 for the others).
     pub entry_reach_mm: f64,
 }
 
