@@ -43,33 +43,16 @@ const LOCAL_EDGES: f32 = 4.0;
 ///
 /// [`Vertex::bounce`]: super::Vertex::bounce
 pub fn fill(primitives: &mut [Primitive]) {
-    let (mut tris, mut outward, mut points) = (Vec::new(), Vec::new(), Vec::new());
-    let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
-    for p in primitives.iter() {
-        let at = |i: u32| Vec3::from_array(p.vertices[i as usize].position);
-        let nrm = |i: u32| Vec3::from_array(p.vertices[i as usize].normal);
-        for t in p.indices.chunks_exact(3) {
-            tris.push([at(t[0]), at(t[1]), at(t[2])]);
-            outward.push(nrm(t[0]) + nrm(t[1]) + nrm(t[2]));
-        }
-        points.extend(
-            p.vertices
-                .iter()
-                .map(|v| (Vec3::from_array(v.position), Vec3::from_array(v.normal))),
-        );
-        lo = lo.min(p.bounds.min);
-        hi = hi.max(p.bounds.max);
-    }
-    if tris.is_empty() {
+    let (caster, diagonal) = Caster::of_mesh(primitives);
+    if diagonal <= 0.0 {
         return;
     }
-    let edge = tris
+    let t_min = (LOCAL_EDGES * caster.mean_edge()).max(1e-4 * diagonal);
+    let points: Vec<(Vec3, Vec3)> = primitives
         .iter()
-        .map(|t| (t[1] - t[0]).length() + (t[2] - t[1]).length() + (t[0] - t[2]).length())
-        .sum::<f32>()
-        / (3 * tris.len()) as f32;
-    let t_min = (LOCAL_EDGES * edge).max(1e-4 * (hi - lo).length());
-    let caster = Caster::new(tris, &outward);
+        .flat_map(|p| &p.vertices)
+        .map(|v| (Vec3::from_array(v.position), Vec3::from_array(v.normal)))
+        .collect();
     let disc = cosine_directions();
     let bounces = in_parallel(&points, |&(at, n)| {
         n.try_normalize()

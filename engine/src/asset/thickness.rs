@@ -68,6 +68,39 @@ impl Caster {
         Self { tris, outward, bvh }
     }
 
+    /// The triangles of all of `primitives` (one mesh; each triangle's outward side by its
+    /// vertices' normals), and the diagonal of their bounds.
+    pub fn of_mesh(primitives: &[Primitive]) -> (Self, f32) {
+        let (mut tris, mut outward) = (Vec::new(), Vec::new());
+        let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
+        for p in primitives {
+            let at = |i: u32| Vec3::from_array(p.vertices[i as usize].position);
+            let nrm = |i: u32| Vec3::from_array(p.vertices[i as usize].normal);
+            for t in p.indices.chunks_exact(3) {
+                tris.push([at(t[0]), at(t[1]), at(t[2])]);
+                outward.push(nrm(t[0]) + nrm(t[1]) + nrm(t[2]));
+            }
+            lo = lo.min(p.bounds.min);
+            hi = hi.max(p.bounds.max);
+        }
+        let diagonal = if tris.is_empty() {
+            0.0
+        } else {
+            (hi - lo).length()
+        };
+        (Self::new(tris, &outward), diagonal)
+    }
+
+    /// The triangles' mean edge length (0 without triangles).
+    pub fn mean_edge(&self) -> f32 {
+        let sum: f32 = self
+            .tris
+            .iter()
+            .map(|t| (t[1] - t[0]).length() + (t[2] - t[1]).length() + (t[0] - t[2]).length())
+            .sum();
+        sum / (3 * self.tris.len()).max(1) as f32
+    }
+
     /// Where the ray `origin + t·dir` (unit `dir`, starting just inside the medium) leaves it,
     /// t > `t_min`: the medium is where the winding number is positive, so a layer the ray
     /// enters (a scan overlapping itself at an eyelid or a lip) must be left too. `None` where
@@ -75,14 +108,7 @@ impl Caster {
     /// (an open mesh).
     pub fn exit(&self, origin: Vec3, dir: Vec3, t_min: f32) -> Option<f32> {
         let bvh = self.bvh.as_ref()?;
-        // −0 components made +0: obvhs takes a direction's octant from its sign bits, and an
-        // axis-aligned ray with a −0 missed the box it starts on.
-        let ray = Ray::new(
-            Vec3A::from(origin),
-            Vec3A::from(dir + Vec3::ZERO),
-            t_min,
-            f32::INFINITY,
-        );
+        let ray = ray(origin, dir, t_min);
         let mut hits = Vec::new();
         let mut rh = RayHit::none();
         bvh.ray_traverse(ray, &mut rh, |_, id| {
@@ -112,12 +138,7 @@ impl Caster {
     /// distance and its index (in the order given to [`Caster::new`]).
     pub fn first(&self, origin: Vec3, dir: Vec3, t_min: f32) -> Option<(f32, usize)> {
         let bvh = self.bvh.as_ref()?;
-        let ray = Ray::new(
-            Vec3A::from(origin),
-            Vec3A::from(dir + Vec3::ZERO),
-            t_min,
-            f32::INFINITY,
-        );
+        let ray = ray(origin, dir, t_min);
         let mut rh = RayHit::none();
         let met = bvh.ray_traverse(ray, &mut rh, |_, id| {
             let i = bvh.primitive_indices[id] as usize;
@@ -137,6 +158,17 @@ impl Caster {
     pub fn normal(&self, i: usize) -> Vec3 {
         self.outward[i].normalize_or_zero()
     }
+}
+
+/// The ray `origin + t·dir`, t > `t_min`. (−0 components made +0: obvhs takes a direction's
+/// octant from its sign bits, and an axis-aligned ray with a −0 missed the box it starts on.)
+fn ray(origin: Vec3, dir: Vec3, t_min: f32) -> Ray {
+    Ray::new(
+        Vec3A::from(origin),
+        Vec3A::from(dir + Vec3::ZERO),
+        t_min,
+        f32::INFINITY,
+    )
 }
 
 /// Möller–Trumbore, both faces: the distance along `dir` to the triangle, if the line meets it.
@@ -182,20 +214,7 @@ pub fn fill(primitives: &mut [Primitive], given: &[bool]) {
     if primitives.iter().zip(given).all(|(_, g)| *g) {
         return;
     }
-    let (mut tris, mut outward) = (Vec::new(), Vec::new());
-    let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
-    for p in primitives.iter() {
-        let at = |i: u32| Vec3::from_array(p.vertices[i as usize].position);
-        let nrm = |i: u32| Vec3::from_array(p.vertices[i as usize].normal);
-        for t in p.indices.chunks_exact(3) {
-            tris.push([at(t[0]), at(t[1]), at(t[2])]);
-            outward.push(nrm(t[0]) + nrm(t[1]) + nrm(t[2]));
-        }
-        lo = lo.min(p.bounds.min);
-        hi = hi.max(p.bounds.max);
-    }
-    let bvh = Caster::new(tris, &outward);
-    let diagonal = (hi - lo).length();
+    let (bvh, diagonal) = Caster::of_mesh(primitives);
     let mut cast_all = Vec::new();
     for (p, _) in primitives.iter().zip(given).filter(|(_, g)| !**g) {
         let points: Vec<Vec3> = p
