@@ -234,9 +234,11 @@ fn box_in_frustum(camera: Mat4, lo: Vec3, hi: Vec3) -> Option<Vec<Vec3>> {
         let slack = 1e-4 * q.w.abs().max(1e-6);
         sides(p).iter().all(|&f| f >= -slack)
     };
-    let size = (hi - lo).max(Vec3::splat(1e-6));
+    // The slack is the box's scale on every axis: a flat box (a plane's, thin on one axis)
+    // holds the points rounding puts a hair off it.
+    let scale = (hi - lo).length().max(lo.abs().max(hi.abs()).max_element());
     let in_box = |p: Vec3| {
-        let e = 1e-4 * size;
+        let e = Vec3::splat(1e-4 * scale.max(1e-6));
         p.cmpge(lo - e).all() && p.cmple(hi + e).all()
     };
     let box_c = box_corners(lo, hi);
@@ -389,6 +391,39 @@ mod tests {
         assert!(inside.map(area).unwrap_or(0.0) > 0.0);
         // No map: not known.
         assert!(ShadowView::NONE.seen_box_uv(head, (lo, hi)).is_none());
+    }
+
+    #[test]
+    fn a_flat_box_wider_than_the_view_is_seen_where_the_view_meets_it() {
+        // A plane's box (no height) 0.33 m across under a camera looking straight down at
+        // 0.22 m of it: no corner of either lies inside the other, the seen part is where the
+        // frustum's edges cross the plane.
+        let (lo, hi) = (
+            Vec3::new(-0.1665, 0.0, -0.1665),
+            Vec3::new(0.1665, 0.0, 0.1665),
+        );
+        let v = ShadowView::fit(
+            Vec3::new(0.0, 1000.0, 0.0),
+            Vec3::new(0.0, 0.0139, 0.0),
+            0.165,
+            4096,
+        );
+        // (The edge scene's camera: 1 m up, 0.111 m either way, depth 0.01–10 m.)
+        let camera = Mat4::from_cols(
+            Vec4::new(-9.008198, 0.0, 0.0, 0.0),
+            Vec4::new(0.0, 0.0, -0.1001001, 0.0),
+            Vec4::new(0.0, 9.008198, 0.0, 0.0),
+            Vec4::new(0.0, 0.0, 0.0990991, 1.0),
+        );
+        let (a, b) = v.seen_box_uv(camera, (lo, hi)).expect("a rectangle");
+        let q = project(&v, Vec3::new(1.0 / 9.008198, 0.0, 1.0 / 9.008198));
+        let half = 0.5 * q.x.abs().max(q.y.abs());
+        for (got, want) in [(a, Vec2::splat(0.5 - half)), (b, Vec2::splat(0.5 + half))] {
+            assert!(
+                (got - want).abs().max_element() < 1e-3,
+                "{a} {b}: want ±{half}"
+            );
+        }
     }
 
     #[test]
