@@ -525,12 +525,20 @@ impl ReferenceSet {
 
     /// The JSON text [`ReferenceSet::save`] writes.
     pub fn to_json(&self) -> String {
-        let mut v = serde_json::to_value(self).expect("reference set serialises");
+        let exact = serde_json::to_value(self).expect("reference set serialises");
+        let mut v = exact.clone();
         round_numbers(&mut v);
         let map = v.as_object().expect("an object");
+        // The optics as they are: a reference is matched to its material by them.
+        let optics = ["eta", "g", "sigma_a", "sigma_s_prime"];
         let mut s = String::from("{\n");
         for key in ["material", "eta", "g", "sigma_a", "sigma_s_prime", "seed"] {
-            s += &format!("  \"{key}\": {},\n", map[key]);
+            let value = if optics.contains(&key) {
+                &exact[key]
+            } else {
+                &map[key]
+            };
+            s += &format!("  \"{key}\": {value},\n");
         }
         s += "  \"entries\": [\n";
         let entries = map["entries"].as_array().expect("an array");

@@ -170,8 +170,10 @@ fn scenes_validate_and_json_round_trips() {
         .is_err());
     let j = serde_json::to_string(&Scene::Sphere { radius_mm: 20.0 }).unwrap();
     assert_eq!(j, r#"{"kind":"sphere","radius_mm":20.0}"#);
-    // A tiny generated set survives save → load (values rounded to 6 digits).
-    let m = acceptance_material(&SKIN1);
+    // A tiny generated set survives save → load (values rounded to 6 digits, the optics
+    // exact: a reference is matched to its material by them).
+    let mut m = acceptance_material(&SKIN1);
+    m.sigma_a[0] *= 1.0 + 1.23e-7;
     let scenes = vec![(Scene::SlabBacklit { thickness_mm: 1.0 }, vec![0.0, 1.0])];
     let mut calls = Vec::new();
     let set = ReferenceSet::generate(&m, &scenes, 2000, 5, 2, |d, t| calls.push((d, t)));
@@ -183,6 +185,10 @@ fn scenes_validate_and_json_round_trips() {
     let back = ReferenceSet::load(&path).unwrap();
     std::fs::remove_dir_all(&dir).ok();
     assert_eq!(back.seed, 5);
+    assert_eq!(
+        (back.sigma_a, back.sigma_s_prime),
+        (m.sigma_a, m.sigma_s_prime)
+    );
     assert_eq!(back.entries[0].photons, 2000);
     for c in 0..3 {
         let (a, b) = (set.entries[0].values[0][c], back.entries[0].values[0][c]);
