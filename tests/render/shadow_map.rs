@@ -118,14 +118,16 @@ fn the_runner_casts_on_the_floor_and_on_itself_and_shadows_only_darken() {
     }
 }
 
-/// skin1 and the darkest test material (skin-dark, A 0.185 / 0.083 / 0.046: its references'
+/// skin1, the darkest test material (skin-dark, A 0.185 / 0.083 / 0.046: its references'
 /// scenes are smaller, so the edge's blade is ~6 mm above the medium — closer than the penumbra
-/// map's 1 cm gap once was, which gave no penumbra at all: mean |ln| 3.76).
+/// map's 1 cm gap once was, which gave no penumbra at all: mean |ln| 3.76) and the widest
+/// (marble, ℓ ≈ 10 mm: its scene is the largest, and the plane's box, flat, once lost every
+/// crossing with the camera's frustum to rounding, so no penumbra map was drawn: 3.95).
 fn edge_sets() -> Vec<(dermis_engine::shading::Material, ReferenceSet)> {
     dermis_measure::bake::install();
     let [skin1, _] = reference::acceptance_materials();
-    let [dark, ..] = reference::test_materials();
-    [skin1, dark]
+    let [dark, _, marble] = reference::test_materials();
+    [skin1, dark, marble]
         .into_iter()
         .map(|m| {
             let set = ReferenceSet::load(&reference::file_for(&reference::default_dir(), &m.name))
