@@ -173,11 +173,20 @@ impl ShadowView {
         if !(self.drawn && lo.is_finite() && hi.is_finite()) {
             return None;
         }
-        let part = box_in_frustum(camera, lo, hi)?;
-        if part.is_empty() {
+        // (The points are projected as they are found: a frame that draws the penumbra map
+        // calls this, and a frame allocates nothing.)
+        let (mut found, mut image) = (false, Some((Vec2::splat(f32::MAX), Vec2::splat(f32::MIN))));
+        box_in_frustum(camera, lo, hi, |p| {
+            found = true;
+            image = image.and_then(|(lo, hi)| {
+                let q = self.image_point(p)?;
+                Some((lo.min(q), hi.max(q)))
+            });
+        })?;
+        if !found {
             return Some((Vec2::ONE, Vec2::ZERO));
         }
-        let (lo, hi) = self.image_of(&part)?;
+        let (lo, hi) = image?;
         // Clip x, y → uv (y flips).
         let uv = |x: f32, y: f32| Vec2::new(0.5 + 0.5 * x, 0.5 - 0.5 * y);
         Some((uv(lo.x, hi.y), uv(hi.x, lo.y)))
@@ -187,15 +196,18 @@ impl ShadowView {
     /// one is behind the light.
     fn image_of(&self, points: &[Vec3]) -> Option<(Vec2, Vec2)> {
         let (mut lo, mut hi) = (Vec2::splat(f32::MAX), Vec2::splat(f32::MIN));
-        for p in points {
-            let q = self.view_proj * p.extend(1.0);
-            if q.w.is_nan() || q.w <= 1e-6 {
-                return None;
-            }
-            lo = lo.min(q.xy() / q.w);
-            hi = hi.max(q.xy() / q.w);
+        for &p in points {
+            let q = self.image_point(p)?;
+            lo = lo.min(q);
+            hi = hi.max(q);
         }
         Some((lo, hi))
+    }
+
+    /// `p` in the map's clip x, y; `None` behind the light.
+    fn image_point(&self, p: Vec3) -> Option<Vec2> {
+        let q = self.view_proj * p.extend(1.0);
+        (!q.w.is_nan() && q.w > 1e-6).then(|| q.xy() / q.w)
     }
 
     /// How far receivers move their test point off the surface (m): half the ramp.
@@ -215,11 +227,12 @@ fn box_corners(lo: Vec3, hi: Vec3) -> [Vec3; 8] {
     })
 }
 
-/// The vertices of the intersection of the box `lo..hi` with the frustum of `camera` (world →
-/// clip space, depth 0..1): the corners of each inside the other and where the edges of each
-/// cross the faces of the other (a convex polytope's vertices are among them, so their hull
-/// is the intersection); empty where they do not meet, `None` where the matrix does not invert.
-fn box_in_frustum(camera: Mat4, lo: Vec3, hi: Vec3) -> Option<Vec<Vec3>> {
+/// Visits the vertices of the intersection of the box `lo..hi` with the frustum of `camera`
+/// (world → clip space, depth 0..1): the corners of each inside the other and where the edges
+/// of each cross the faces of the other (a convex polytope's vertices are among them, so their
+/// hull is the intersection); none where they do not meet, `None` where the matrix does not
+/// invert.
+fn box_in_frustum(camera: Mat4, lo: Vec3, hi: Vec3, mut visit: impl FnMut(Vec3)) -> Option<()> {
     let inverse = camera.inverse();
     if !inverse.is_finite() {
         return None;
@@ -262,9 +275,17 @@ fn box_in_frustum(camera: Mat4, lo: Vec3, hi: Vec3) -> Option<Vec<Vec3>> {
             .filter(move |bit| a & bit == 0)
             .map(move |bit| (a, a | bit))
     });
-    let mut out: Vec<Vec3> = box_c.iter().copied().filter(|&p| in_frustum(p)).collect();
-    out.extend(frustum_c.iter().copied().filter(|&p| in_box(p)));
-    for (a, b) in edges.clone() {
+    box_c
+        .iter()
+        .copied()
+        .filter(|&p| in_frustum(p))
+        .for_each(&mut visit);
+    frustum_c
+        .iter()
+        .copied()
+        .filter(|&p| in_box(p))
+        .for_each(&mut visit);
+    for (a, b) in edges {
         // The box's edge across the frustum's planes.
         let (p, q) = (box_c[a], box_c[b]);
         let (fp, fq) = (sides(p), sides(q));
@@ -272,7 +293,7 @@ fn box_in_frustum(camera: Mat4, lo: Vec3, hi: Vec3) -> Option<Vec<Vec3>> {
             if (u < 0.0) != (v < 0.0) {
                 let x = p + (q - p) * (u / (u - v));
                 if in_frustum(x) {
-                    out.push(x);
+                    visit(x);
                 }
             }
         }
@@ -284,13 +305,13 @@ fn box_in_frustum(camera: Mat4, lo: Vec3, hi: Vec3) -> Option<Vec<Vec3>> {
                 if (u < 0.0) != (v < 0.0) {
                     let x = p + (q - p) * (u / (u - v));
                     if in_box(x) {
-                        out.push(x);
+                        visit(x);
                     }
                 }
             }
         }
     }
-    Some(out)
+    Some(())
 }
 
 /// The eight corners of the camera's frustum cut to the depths along its axis that `points`

@@ -250,6 +250,33 @@ fn a_menu_frame_allocates_nothing() {
 }
 
 #[test]
+fn the_penumbra_maps_region_is_found_without_allocating() {
+    let _shared = crate::shared();
+    // What a frame that draws the penumbra map asks of the shadow view (the showroom's
+    // close-up): where in the map the part of the subject's box the camera sees lies.
+    use dermis_engine::render::ShadowView;
+    let (lo, hi) = (Vec3::new(-0.3, 0.0, -0.2), Vec3::new(0.3, 1.8, 0.2));
+    let map = ShadowView::fit(Vec3::new(2.0, 3.0, 1.0), 0.5 * (lo + hi), 1.0, 1024);
+    let camera = dermis_engine::camera::look_at(
+        Vec3::new(0.0, 1.65, 0.6),
+        Vec3::new(0.0, 1.6, 0.0),
+        0.6,
+        16.0 / 9.0,
+    );
+    let before = crate::thread_allocations();
+    let mut area = 0.0;
+    for k in 0..100 {
+        let lift = Vec3::Y * (k as f32 * 1e-3);
+        if let Some((a, b)) = map.seen_box_uv(camera, (lo + lift, hi + lift)) {
+            area += (b - a).max(glam::Vec2::ZERO).element_product();
+        }
+    }
+    assert_eq!(crate::thread_allocations() - before, 0);
+    // (and found something: the head is in view)
+    assert!(area > 0.0);
+}
+
+#[test]
 fn a_tiny_window_still_shows_the_character_close_up() {
     let _shared = crate::shared();
     // 160×90 (a test target, a thumbnail): no room beside or above the panel, so the
