@@ -149,6 +149,19 @@ impl SphereGrid {
         for c in 0..3 {
             let (s, st) = grid::channel(m, c);
             let (i0, ws) = lagrange4(s_position(s, &s_all), s_all.len());
+            // Past the terminator (u < ½) light reaches a point through the ball and decays
+            // as e^(−σ_tr d): ln M is linear in σ_tr/σ'_t = √3·s at a given R̂, so the dark
+            // side is interpolated linearly in s between the two nodes around it (a cubic in
+            // ln s, as the lit side is, swings by up to 2⁴ between nodes whose tails differ
+            // by 2¹⁶).
+            let dark = {
+                let k = s_all.partition_point(|&v| v <= s).clamp(1, s_all.len() - 1) - 1;
+                let f = ((s - s_all[k]) / (s_all[k + 1] - s_all[k])).clamp(0.0, 1.0);
+                let mut w = [0.0; 4];
+                w[k - i0] = 1.0 - f;
+                w[k + 1 - i0] = f;
+                w
+            };
             let own_total = log2_total(s, m.eta);
             for j in 0..LUT_V {
                 let r = st * row_radius_mm(j);
@@ -156,6 +169,7 @@ impl SphereGrid {
                 let (k0, wk) = lagrange4(x, R_COUNT);
                 for u in 0..LUT_U {
                     let mut v = own_total;
+                    let ws = if 2 * u + 1 < LUT_U { &dark } else { &ws };
                     for (a, wa) in ws.iter().enumerate().filter(|(_, w)| **w != 0.0) {
                         for (b, wb) in we.iter().enumerate().filter(|(_, w)| **w != 0.0) {
                             let (e, i) = (e0 + b, i0 + a);
