@@ -155,6 +155,7 @@ impl SphereGrid {
             // ln s, as the lit side is, swings by up to 2⁴ between nodes whose tails differ
             // by 2¹⁶).
             let dark = {
+                let s = if s.is_finite() { s } else { s_all[0] };
                 let k = s_all.partition_point(|&v| v <= s).clamp(1, s_all.len() - 1) - 1;
                 let f = ((s - s_all[k]) / (s_all[k + 1] - s_all[k])).clamp(0.0, 1.0);
                 let mut w = [0.0; 4];
