@@ -103,6 +103,39 @@ fn translucency_matches_path_traced_backlit_slabs() {
     }
 }
 
+/// `preintegrated` on `m`'s reference spheres: each scored (printed) and held to
+/// `each_bound` over the reference's noise, `check`ed with its bands; the scores' and the
+/// noise's sums and the count.
+fn preintegrated_spheres(
+    (gpu, probe): (&Gpu, &mut SceneRenderer),
+    m: &Material,
+    each_bound: f64,
+    mut check: impl FnMut(&ground_truth::Entry, &[[f64; 3]]),
+) -> (f64, f64, f64) {
+    let (mut sum, mut noise, mut n) = (0.0, 0.0, 0.0);
+    let set = set(m);
+    for entry in set
+        .entries
+        .iter()
+        .filter(|e| matches!(e.scene, Scene::Sphere { .. }))
+    {
+        let got = render((gpu, &mut *probe), ShadingModel::Preintegrated, m, entry);
+        let s = metric::score(&got, entry);
+        println!("{} {}: {:.3}", m.name, entry.scene.label(), s.mean_log_all);
+        check(entry, &got);
+        assert!(
+            s.mean_log_all <= tolerance(entry, each_bound),
+            "{} {}: {s:?}",
+            m.name,
+            entry.scene.label()
+        );
+        sum += s.mean_log_all;
+        noise += s.ref_rel_se_all;
+        n += 1.0;
+    }
+    (sum, noise, n)
+}
+
 #[test]
 fn the_preintegrated_lut_matches_path_traced_spheres_and_flat_ground() {
     // The LUT's rows are the Monte Carlo sphere walker's (baked offline, shipped); rendered
@@ -113,33 +146,9 @@ fn the_preintegrated_lut_matches_path_traced_spheres_and_flat_ground() {
     let mut probe = SceneRenderer::new(&gpu);
     let (mut sum, mut noise, mut n) = (0.0, 0.0, 0.0);
     for m in ground_truth::acceptance_materials() {
+        let (s, e, k) = preintegrated_spheres((&gpu, &mut probe), &m, 0.15, |_, _| {});
+        (sum, noise, n) = (sum + s, noise + e, n + k);
         let set = set(&m);
-        for entry in set
-            .entries
-            .iter()
-            .filter(|e| matches!(e.scene, Scene::Sphere { .. }))
-        {
-            let got = probe
-                .render(
-                    &gpu,
-                    ShadingModel::Preintegrated,
-                    &m,
-                    &entry.scene,
-                    &entry.edges,
-                )
-                .unwrap();
-            let s = metric::score(&got, entry);
-            println!("{} {}: {:.3}", m.name, entry.scene.label(), s.mean_log_all);
-            assert!(
-                s.mean_log_all <= tolerance(entry, 0.15),
-                "{} {}: {s:?}",
-                m.name,
-                entry.scene.label()
-            );
-            sum += s.mean_log_all;
-            noise += s.ref_rel_se_all;
-            n += 1.0;
-        }
         // Flat ground (the LUT's flattest row) far on the lit side of a shadow edge: the
         // diffuse reflectance at incidence θ, the edge reference's plateau.
         for theta in [0.0f64, 45.0] {
@@ -181,24 +190,8 @@ fn a_grid_served_lut_matches_path_traced_spheres_into_the_dark_side() {
     let (mut sum, mut noise, mut n) = (0.0, 0.0, 0.0);
     for m in ground_truth::test_materials() {
         assert!(m.matching_preset().is_none(), "{} is a preset's", m.name);
-        let set = set(&m);
-        for entry in set
-            .entries
-            .iter()
-            .filter(|e| matches!(e.scene, Scene::Sphere { .. }))
-        {
-            let got = probe
-                .render(
-                    &gpu,
-                    ShadingModel::Preintegrated,
-                    &m,
-                    &entry.scene,
-                    &entry.edges,
-                )
-                .unwrap();
-            let s = metric::score(&got, entry);
-            println!("{} {}: {:.3}", m.name, entry.scene.label(), s.mean_log_all);
-            // Every band the truth resolves is lit: nothing black where light arrives.
+        // Every band the truth resolves is lit: nothing black where light arrives.
+        let lit = |entry: &ground_truth::Entry, got: &[[f64; 3]]| {
             for (k, (g, w)) in got.iter().zip(&entry.values).enumerate() {
                 for c in 0..3 {
                     let resolved = w[c] > 0.0 && entry.std_err[k][c] < 0.2 * w[c];
@@ -211,16 +204,9 @@ fn a_grid_served_lut_matches_path_traced_spheres_into_the_dark_side() {
                     );
                 }
             }
-            assert!(
-                s.mean_log_all <= tolerance(entry, 0.20),
-                "{} {}: {s:?}",
-                m.name,
-                entry.scene.label()
-            );
-            sum += s.mean_log_all;
-            noise += s.ref_rel_se_all;
-            n += 1.0;
-        }
+        };
+        let (s, e, k) = preintegrated_spheres((&gpu, &mut probe), &m, 0.20, lit);
+        (sum, noise, n) = (sum + s, noise + e, n + k);
     }
     assert_eq!(n, 9.0, "three spheres per material");
     assert!(sum / n <= 0.10 + 3.0 * noise / n, "mean {:.3}", sum / n);
